@@ -1,0 +1,283 @@
+//! Sphere bodies: their description, validation and the read-only view the world hands out.
+
+use std::f64::consts::PI;
+use std::fmt;
+
+use glam::DVec3;
+
+/// Stable identifier of a body in a [`World`](crate::World). Ids are never reused, and ties
+/// between simultaneous events are broken by them, so results never depend on hash order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct BodyId(pub(crate) u32);
+
+impl BodyId {
+    /// The id as an index: bodies are numbered 0, 1, 2, ... in the order they were added.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+impl fmt::Display for BodyId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "#{}", self.0)
+    }
+}
+
+/// Everything needed to add a sphere to a world. Build one with [`SphereDesc::new`] and the
+/// `with_*` methods; [`World::add_sphere`](crate::World::add_sphere) validates it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SphereDesc {
+    /// Optional name, used in error messages and by scene files.
+    pub name: Option<String>,
+    /// Centre position.
+    pub position: DVec3,
+    /// Linear velocity.
+    pub velocity: DVec3,
+    /// Radius, `> 0`.
+    pub radius: f64,
+    /// Density, `> 0`; mass is density times volume.
+    pub density: f64,
+    /// Coefficient of restitution in `[0, 1]`: 1 is perfectly elastic.
+    pub restitution: f64,
+    /// Constant applied force (on top of gravity).
+    pub force: DVec3,
+    /// Fixed bodies have infinite mass: collisions never move them, gravity and forces do not act
+    /// on them. A fixed body with a velocity moves at that constant velocity (a kinematic body).
+    pub fixed: bool,
+}
+
+impl SphereDesc {
+    /// A sphere of the given radius at the origin, at rest, density 1, restitution 1.
+    pub fn new(radius: f64) -> Self {
+        SphereDesc {
+            name: None,
+            position: DVec3::ZERO,
+            velocity: DVec3::ZERO,
+            radius,
+            density: 1.0,
+            restitution: 1.0,
+            force: DVec3::ZERO,
+            fixed: false,
+        }
+    }
+
+    /// Sets the name.
+    pub fn named(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+
+    /// Sets the position.
+    pub fn at(mut self, position: DVec3) -> Self {
+        self.position = position;
+        self
+    }
+
+    /// Sets the velocity.
+    pub fn moving(mut self, velocity: DVec3) -> Self {
+        self.velocity = velocity;
+        self
+    }
+
+    /// Sets the density.
+    pub fn with_density(mut self, density: f64) -> Self {
+        self.density = density;
+        self
+    }
+
+    /// Sets the restitution.
+    pub fn with_restitution(mut self, restitution: f64) -> Self {
+        self.restitution = restitution;
+        self
+    }
+
+    /// Sets the constant applied force.
+    pub fn with_force(mut self, force: DVec3) -> Self {
+        self.force = force;
+        self
+    }
+
+    /// Makes the body fixed (infinite mass).
+    pub fn fixed(mut self) -> Self {
+        self.fixed = true;
+        self
+    }
+
+    /// Checks every field; `label` names the body in the error.
+    pub(crate) fn validate(&self, label: impl Fn() -> String) -> Result<(), BodyError> {
+        let err = |field, value: f64, reason| BodyError {
+            body: label(),
+            field,
+            value,
+            reason,
+        };
+        for (field, v) in [
+            (Field::Position, self.position),
+            (Field::Velocity, self.velocity),
+            (Field::Force, self.force),
+        ] {
+            if let Some(bad) = v.to_array().into_iter().find(|c| !c.is_finite()) {
+                return Err(err(field, bad, "must be finite"));
+            }
+        }
+        if !(self.radius.is_finite() && self.radius > 0.0) {
+            return Err(err(Field::Radius, self.radius, "must be finite and > 0"));
+        }
+        if !(self.density.is_finite() && self.density > 0.0) {
+            return Err(err(Field::Density, self.density, "must be finite and > 0"));
+        }
+        if !(0.0..=1.0).contains(&self.restitution) {
+            return Err(err(
+                Field::Restitution,
+                self.restitution,
+                "must be in [0, 1]",
+            ));
+        }
+        let volume = 4.0 / 3.0 * PI * self.radius.powi(3);
+        let mass = self.density * volume;
+        if !self.fixed && !(mass.is_finite() && mass > 0.0) {
+            return Err(err(
+                Field::Density,
+                self.density,
+                "gives a mass that is 0 or infinite",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Which field of a body an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Field {
+    /// [`SphereDesc::position`].
+    Position,
+    /// [`SphereDesc::velocity`].
+    Velocity,
+    /// [`SphereDesc::radius`].
+    Radius,
+    /// [`SphereDesc::density`].
+    Density,
+    /// [`SphereDesc::restitution`].
+    Restitution,
+    /// [`SphereDesc::force`].
+    Force,
+}
+
+impl fmt::Display for Field {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Field::Position => "position",
+            Field::Velocity => "velocity",
+            Field::Radius => "radius",
+            Field::Density => "density",
+            Field::Restitution => "restitution",
+            Field::Force => "force",
+        })
+    }
+}
+
+/// An invalid body: which one, which field, the offending value and why.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("sphere {body}: {field} {reason}, got {value}")]
+pub struct BodyError {
+    /// The body's name in quotes if it has one, else its index as `#n`.
+    pub body: String,
+    /// The offending field.
+    pub field: Field,
+    /// The offending value (one component for vectors).
+    pub value: f64,
+    /// What the value must be.
+    pub reason: &'static str,
+}
+
+/// A body in a world: read-only; change it through the world's setters so it stays valid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    pub(crate) id: BodyId,
+    pub(crate) desc: SphereDesc,
+    pub(crate) inverse_mass: f64,
+}
+
+impl Body {
+    pub(crate) fn new(id: BodyId, desc: SphereDesc) -> Self {
+        let inverse_mass = if desc.fixed {
+            0.0
+        } else {
+            1.0 / (desc.density * 4.0 / 3.0 * PI * desc.radius.powi(3))
+        };
+        Body {
+            id,
+            desc,
+            inverse_mass,
+        }
+    }
+
+    /// The body's id.
+    pub fn id(&self) -> BodyId {
+        self.id
+    }
+    /// The body's name, if it has one.
+    pub fn name(&self) -> Option<&str> {
+        self.desc.name.as_deref()
+    }
+    /// Centre position.
+    pub fn position(&self) -> DVec3 {
+        self.desc.position
+    }
+    /// Linear velocity.
+    pub fn velocity(&self) -> DVec3 {
+        self.desc.velocity
+    }
+    /// Radius.
+    pub fn radius(&self) -> f64 {
+        self.desc.radius
+    }
+    /// Density.
+    pub fn density(&self) -> f64 {
+        self.desc.density
+    }
+    /// Mass: density times volume; infinite for fixed bodies.
+    pub fn mass(&self) -> f64 {
+        if self.desc.fixed {
+            f64::INFINITY
+        } else {
+            1.0 / self.inverse_mass
+        }
+    }
+    /// Inverse mass: 0 for fixed bodies.
+    pub fn inverse_mass(&self) -> f64 {
+        self.inverse_mass
+    }
+    /// Coefficient of restitution.
+    pub fn restitution(&self) -> f64 {
+        self.desc.restitution
+    }
+    /// Constant applied force.
+    pub fn force(&self) -> DVec3 {
+        self.desc.force
+    }
+    /// Whether the body is fixed (infinite mass).
+    pub fn is_fixed(&self) -> bool {
+        self.desc.fixed
+    }
+    /// The description this body would be re-created from.
+    pub fn desc(&self) -> &SphereDesc {
+        &self.desc
+    }
+    /// Kinetic energy (0 for fixed bodies).
+    pub fn kinetic_energy(&self) -> f64 {
+        if self.desc.fixed {
+            0.0
+        } else {
+            0.5 * self.mass() * self.desc.velocity.length_squared()
+        }
+    }
+    /// Momentum (zero for fixed bodies, whose momentum is not defined).
+    pub fn momentum(&self) -> DVec3 {
+        if self.desc.fixed {
+            DVec3::ZERO
+        } else {
+            self.mass() * self.desc.velocity
+        }
+    }
+}

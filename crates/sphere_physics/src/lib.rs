@@ -1,0 +1,59 @@
+//! Exact sphere physics, without Bevy.
+//!
+//! Spheres with radius, density (so mass), restitution and an optional constant force, or fixed
+//! (infinite mass), move under gravity with a kick-drift-kick integrator
+//! ([`SemiImplicitEuler`] by default). Within each step, collisions are found by a time-of-impact
+//! method ([`ExactToi`], a closed-form swept test, by default; or the classic [`Bisection`]) and
+//! resolved one at a time, in time order, with an impulse along the line of centres that
+//! conserves momentum, and kinetic energy when elastic. Touching chains propagate contact by
+//! contact, so a Newton's cradle with no gaps sends exactly one ball out.
+//!
+//! The parts, each in its own module:
+//! - [`body`]: bodies and their validation ([`SphereDesc`], [`Body`], [`BodyError`]);
+//! - [`integrator`]: time integration behind the [`Integrator`] trait;
+//! - [`contact`]: the narrow phase, [`classify`] two spheres;
+//! - [`toi`]: time of impact behind the [`TimeOfImpact`] trait;
+//! - [`response`]: the impulse, [`resolve`];
+//! - [`world`]: the [`World`] and its [`Settings`];
+//! - [`scene`]: scene files ([`SceneDesc`]).
+//!
+//! ```
+//! use sphere_physics::{glam::DVec3, Settings, SphereDesc, World};
+//!
+//! // A 5-ball Newton's cradle, balls touching, one striker.
+//! let mut world = World::new(Settings::default());
+//! let balls: Vec<_> = (0..5)
+//!     .map(|i| {
+//!         let v = if i == 0 { DVec3::X } else { DVec3::ZERO };
+//!         world.add_sphere(SphereDesc::new(0.5).at(DVec3::new(i as f64, 0.0, 0.0)).moving(v))
+//!     })
+//!     .collect::<Result<_, _>>()?;
+//! world.step(1.0 / 60.0)?;
+//! assert_eq!(world.body(balls[4]).unwrap().velocity(), DVec3::X);
+//! assert!(balls[..4].iter().all(|&b| world.body(b).unwrap().velocity() == DVec3::ZERO));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+#![warn(missing_docs)]
+
+pub mod body;
+mod broad_phase;
+pub mod contact;
+pub mod integrator;
+pub mod response;
+pub mod scene;
+mod solver;
+pub mod stats;
+pub mod toi;
+pub mod tolerance;
+pub mod world;
+
+pub use body::{Body, BodyError, BodyId, Field, SphereDesc};
+pub use contact::{ContactKind, Kinematics, classify};
+pub use glam;
+pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};
+pub use response::{CombineRule, Resolution, resolve};
+pub use scene::{SceneDesc, SceneError, SphereSpec};
+pub use stats::{Collision, StepStats};
+pub use toi::{Bisection, ExactToi, TimeOfImpact, ToiMethod, ToiOutcome};
+pub use tolerance::Tolerance;
+pub use world::{Settings, World, WorldError};

@@ -1,0 +1,235 @@
+//! Scene description: a whole scene as plain data, read from and written to RON.
+//!
+//! ```
+//! use sphere_physics::SceneDesc;
+//!
+//! let scene = SceneDesc::from_ron(r#"(
+//!     name: "Two spheres",
+//!     gravity: (0.0, 0.0, 0.0),
+//!     restitution: 1.0,
+//!     spheres: [
+//!         (name: "a", position: (0.0, 0.0, 0.0), velocity: (1.0, 0.0, 0.0), radius: 0.5),
+//!         (name: "b", position: (2.0, 0.0, 0.0), radius: 0.5, density: 2.0),
+//!     ],
+//! )"#)?;
+//! let world = scene.build()?;
+//! assert_eq!(world.len(), 2);
+//! # Ok::<(), sphere_physics::SceneError>(())
+//! ```
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use ron::extensions::Extensions;
+use serde::{Deserialize, Serialize};
+
+use crate::{BodyError, IntegratorKind, Settings, SphereDesc, ToiMethod, World};
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A whole scene: world settings and spheres. Fields with defaults may be left out of a file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// Scene name.
+    pub name: String,
+    /// What the scene shows and what it models (default empty).
+    #[serde(default)]
+    pub description: String,
+    /// Gravity (default none).
+    #[serde(default)]
+    pub gravity: [f64; 3],
+    /// Restitution of spheres that do not give their own (default 1).
+    #[serde(default = "one")]
+    pub restitution: f64,
+    /// Time-of-impact method (default [`ToiMethod::Exact`]).
+    #[serde(default)]
+    pub method: Option<ToiMethod>,
+    /// Integrator (default [`IntegratorKind::SemiImplicitEuler`]).
+    #[serde(default)]
+    pub integrator: Option<IntegratorKind>,
+    /// The scene's preferred time step in seconds (a runner's default; none means 1/60).
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// The spheres; their order is their body ids' order.
+    pub spheres: Vec<SphereSpec>,
+}
+
+/// One sphere in a scene file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    /// Name (default: none; runners call it by its index).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Centre position.
+    pub position: [f64; 3],
+    /// Velocity (default 0).
+    #[serde(default)]
+    pub velocity: [f64; 3],
+    /// Radius.
+    pub radius: f64,
+    /// Density (default 1).
+    #[serde(default = "one")]
+    pub density: f64,
+    /// Restitution (default: the scene's).
+    #[serde(default)]
+    pub restitution: Option<f64>,
+    /// Constant applied force (default 0).
+    #[serde(default)]
+    pub force: [f64; 3],
+    /// Fixed: infinite mass (default false).
+    #[serde(default)]
+    pub fixed: bool,
+}
+
+/// What can go wrong loading or building a scene.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file could not be read.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The text is not a valid scene.
+    #[error("{}{line}:{column}: {message}", path.as_ref().map(|p| format!("{}:", p.display())).unwrap_or_default())]
+    Parse {
+        /// The file, if the text came from one.
+        path: Option<PathBuf>,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A sphere is invalid.
+    #[error("{0}")]
+    Sphere(#[from] BodyError),
+    /// A scene-wide setting is invalid.
+    #[error("scene {field} {reason}, got {value}")]
+    Setting {
+        /// The field.
+        field: &'static str,
+        /// The value.
+        value: f64,
+        /// What it must be.
+        reason: &'static str,
+    },
+}
+
+impl SceneDesc {
+    fn ron_options() -> ron::Options {
+        ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME)
+    }
+
+    /// Parses a scene from RON text. `name: "a"` is accepted for optional fields (no `Some(..)`).
+    pub fn from_ron(text: &str) -> Result<Self, SceneError> {
+        Self::ron_options()
+            .from_str(text)
+            .map_err(|e: ron::error::SpannedError| SceneError::Parse {
+                path: None,
+                line: e.span.start.line,
+                column: e.span.start.col,
+                message: e.code.to_string(),
+            })
+    }
+
+    /// Reads and parses a scene file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, SceneError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Self::from_ron(&text).map_err(|e| match e {
+            SceneError::Parse {
+                line,
+                column,
+                message,
+                ..
+            } => SceneError::Parse {
+                path: Some(path.to_owned()),
+                line,
+                column,
+                message,
+            },
+            other => other,
+        })
+    }
+
+    /// The scene as pretty RON text, which [`SceneDesc::from_ron`] reads back unchanged.
+    pub fn to_ron(&self) -> String {
+        let pretty = ron::ser::PrettyConfig::default().extensions(Extensions::IMPLICIT_SOME);
+        Self::ron_options()
+            .to_string_pretty(self, pretty)
+            .expect("a scene always serialises")
+    }
+
+    /// The world settings the scene asks for.
+    pub fn settings(&self) -> Result<Settings, SceneError> {
+        let gravity = DVec3::from(self.gravity);
+        if let Some(bad) = self.gravity.into_iter().find(|g| !g.is_finite()) {
+            return Err(SceneError::Setting {
+                field: "gravity",
+                value: bad,
+                reason: "must be finite",
+            });
+        }
+        if !(0.0..=1.0).contains(&self.restitution) {
+            return Err(SceneError::Setting {
+                field: "restitution",
+                value: self.restitution,
+                reason: "must be in [0, 1]",
+            });
+        }
+        if let Some(dt) = self.dt.filter(|dt| !(dt.is_finite() && *dt > 0.0)) {
+            return Err(SceneError::Setting {
+                field: "dt",
+                value: dt,
+                reason: "must be finite and > 0",
+            });
+        }
+        Ok(Settings {
+            gravity,
+            method: self.method.unwrap_or_default(),
+            integrator: self.integrator.unwrap_or_default(),
+            ..Settings::default()
+        })
+    }
+
+    /// The sphere descriptions, with the scene's defaults filled in.
+    pub fn sphere_descs(&self) -> impl Iterator<Item = SphereDesc> + '_ {
+        self.spheres.iter().map(|s| SphereDesc {
+            name: s.name.clone(),
+            position: s.position.into(),
+            velocity: s.velocity.into(),
+            radius: s.radius,
+            density: s.density,
+            restitution: s.restitution.unwrap_or(self.restitution),
+            force: s.force.into(),
+            fixed: s.fixed,
+        })
+    }
+
+    /// Builds the world: the first invalid sphere, if any, is reported by name or index.
+    pub fn build(&self) -> Result<World, SceneError> {
+        let mut world = World::new(self.settings()?);
+        for desc in self.sphere_descs() {
+            world.add_sphere(desc)?;
+        }
+        Ok(world)
+    }
+}
+
+impl fmt::Display for SceneDesc {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} ({} spheres)", self.name, self.spheres.len())
+    }
+}

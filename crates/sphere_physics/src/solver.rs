@@ -1,0 +1,299 @@
+//! One step: kick, then drift with collisions resolved one at a time in time order, then kick.
+//!
+//! Every pair's first impact in the step is put in a priority queue keyed by (time, lower id,
+//! higher id). The earliest is resolved: both bodies are moved to that instant, an impulse is
+//! applied, and only the pairs involving those two bodies are tested again for the rest of the
+//! step. Touching chains therefore propagate one contact at a time, exactly as a sequence of
+//! collisions separated by vanishing gaps would: one ball in, one ball out.
+
+use std::cmp::{Ordering, Reverse};
+use std::collections::BinaryHeap;
+
+use glam::DVec3;
+
+use crate::broad_phase::{Aabb, SweepAndPrune};
+use crate::response::resolve;
+use crate::{Body, Collision, Integrator, Settings, StepStats, TimeOfImpact};
+
+/// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
+#[derive(Clone, Copy, Debug)]
+struct Segment {
+    t0: f64,
+    position: DVec3,
+    velocity: DVec3,
+    kick_after: DVec3,
+    acceleration: DVec3,
+    inverse_mass: f64,
+    radius: f64,
+    restitution: f64,
+    version: u32,
+}
+
+impl Segment {
+    fn position_at(&self, t: f64) -> DVec3 {
+        self.position + self.velocity * (t - self.t0)
+    }
+
+    fn advance_to(&mut self, t: f64) {
+        self.position = self.position_at(t);
+        self.t0 = t;
+    }
+
+    fn is_fixed(&self) -> bool {
+        self.inverse_mass == 0.0
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Event {
+    time: f64,
+    a: u32,
+    b: u32,
+    version_a: u32,
+    version_b: u32,
+}
+
+impl Event {
+    fn key(&self) -> (f64, u32, u32, u32, u32) {
+        (self.time, self.a, self.b, self.version_a, self.version_b)
+    }
+}
+
+impl PartialEq for Event {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Event {}
+impl PartialOrd for Event {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Event {
+    fn cmp(&self, other: &Self) -> Ordering {
+        let (s, o) = (self.key(), other.key());
+        s.0.total_cmp(&o.0)
+            .then(s.1.cmp(&o.1))
+            .then(s.2.cmp(&o.2))
+            .then(s.3.cmp(&o.3))
+            .then(s.4.cmp(&o.4))
+    }
+}
+
+/// Scratch space for stepping, kept between steps so a warmed-up step does not allocate.
+#[derive(Debug, Default)]
+pub(crate) struct Solver {
+    segments: Vec<Segment>,
+    boxes: Vec<Aabb>,
+    queue: BinaryHeap<Reverse<Event>>,
+    sweep: SweepAndPrune,
+    pub collisions: Vec<Collision>,
+}
+
+/// What the solver needs to know besides the bodies.
+pub(crate) struct StepContext<'a> {
+    pub settings: &'a Settings,
+    pub integrator: &'a dyn Integrator,
+    pub toi: &'a dyn TimeOfImpact,
+    pub dt: f64,
+    pub start_time: f64,
+}
+
+impl Solver {
+    /// Advances `bodies` (all live, in id order) by `ctx.dt`, filling the collision counters of
+    /// `stats` and `self.collisions`.
+    pub fn step(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
+        let dt = ctx.dt;
+        let settings = ctx.settings;
+        self.collisions.clear();
+        self.queue.clear();
+        self.segments.clear();
+        self.boxes.clear();
+        let mut dynamic = 0u32;
+        for body in bodies.iter() {
+            let (acceleration, kicks) = if body.is_fixed() {
+                (DVec3::ZERO, Default::default())
+            } else {
+                dynamic += 1;
+                let a = settings.gravity + body.force() * body.inverse_mass();
+                let k = ctx.integrator.kicks(body.velocity(), a, dt);
+                (a, (k.before, k.after))
+            };
+            let segment = Segment {
+                t0: 0.0,
+                position: body.position(),
+                velocity: body.velocity() + kicks.0,
+                kick_after: kicks.1,
+                acceleration,
+                inverse_mass: body.inverse_mass(),
+                radius: body.radius(),
+                restitution: body.restitution(),
+                version: 0,
+            };
+            self.boxes.push(swept_box(&segment, dt, settings));
+            self.segments.push(segment);
+        }
+
+        // First impacts of every pair whose swept boxes meet.
+        let (mut sweep, boxes) = (
+            std::mem::take(&mut self.sweep),
+            std::mem::take(&mut self.boxes),
+        );
+        sweep.pairs(&boxes, |i, j| self.test_pair(i, j, 0.0, ctx, stats));
+        (self.sweep, self.boxes) = (sweep, boxes);
+
+        let budget = settings
+            .max_collisions_per_body
+            .saturating_mul(dynamic.max(1));
+        while let Some(Reverse(event)) = self.queue.pop() {
+            let (a, b) = (event.a as usize, event.b as usize);
+            if self.segments[a].version != event.version_a
+                || self.segments[b].version != event.version_b
+            {
+                continue;
+            }
+            if stats.collisions >= budget {
+                stats.collisions_deferred += 1;
+                continue;
+            }
+            self.resolve_event(&event, bodies, ctx, stats);
+            for (k, skip) in [(a, usize::MAX), (b, a)] {
+                for m in 0..self.segments.len() {
+                    if m != k && m != skip && self.boxes[k].overlaps(&self.boxes[m]) {
+                        self.test_pair(k.min(m), k.max(m), event.time, ctx, stats);
+                    }
+                }
+            }
+        }
+
+        for (body, segment) in bodies.iter_mut().zip(&self.segments) {
+            body.desc.position = segment.position_at(dt);
+            body.desc.velocity = segment.velocity + segment.kick_after;
+        }
+    }
+
+    /// Queues the first impact of pair `(i, j)` (with `i < j`) in `[t, dt]`, if any.
+    fn test_pair(
+        &mut self,
+        i: usize,
+        j: usize,
+        t: f64,
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let (si, sj) = (&self.segments[i], &self.segments[j]);
+        if si.is_fixed() && sj.is_fixed() {
+            return;
+        }
+        let d = sj.position_at(t) - si.position_at(t);
+        let w = sj.velocity - si.velocity;
+        let outcome = ctx.toi.time_of_impact(
+            d,
+            w,
+            si.radius + sj.radius,
+            ctx.dt - t,
+            ctx.settings.tolerance,
+        );
+        stats.toi_tests += 1;
+        stats.toi_iterations += u64::from(outcome.iterations);
+        if let Some(toi) = outcome.time {
+            self.queue.push(Reverse(Event {
+                time: (t + toi).min(ctx.dt),
+                a: i as u32,
+                b: j as u32,
+                version_a: si.version,
+                version_b: sj.version,
+            }));
+        }
+    }
+
+    fn resolve_event(
+        &mut self,
+        event: &Event,
+        bodies: &[Body],
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let (a, b) = (event.a as usize, event.b as usize);
+        let t = event.time;
+        self.segments[a].advance_to(t);
+        self.segments[b].advance_to(t);
+        let (sa, sb) = (self.segments[a], self.segments[b]);
+        let d = sb.position - sa.position;
+        let distance = d.length();
+        if distance == 0.0 {
+            return;
+        }
+        let normal = d / distance;
+        let settings = ctx.settings;
+        let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
+        let pressing = (-(sb.acceleration - sa.acceleration).dot(normal)).max(0.0);
+        let resting = approach_speed <= settings.resting_factor * pressing * ctx.dt;
+        let restitution = if resting {
+            0.0
+        } else {
+            settings
+                .restitution_combine
+                .combine(sa.restitution, sb.restitution)
+        };
+        let r = resolve(
+            sa.inverse_mass,
+            sb.inverse_mass,
+            sa.velocity,
+            sb.velocity,
+            normal,
+            restitution,
+        );
+        for (k, velocity) in [(a, r.velocity_a), (b, r.velocity_b)] {
+            let segment = &mut self.segments[k];
+            segment.velocity = velocity;
+            segment.version += 1;
+            self.boxes[k] = swept_box(segment, ctx.dt, settings);
+        }
+        stats.collisions += 1;
+        stats.resting_contacts += u32::from(resting);
+        self.collisions.push(Collision {
+            a: bodies[a].id(),
+            b: bodies[b].id(),
+            time: ctx.start_time + t,
+            normal,
+            point: sa.position + normal * sa.radius,
+            impulse: r.impulse,
+            resting,
+        });
+    }
+}
+
+impl Solver {
+    /// The largest overlap between bodies (at least one dynamic), 0 if none.
+    pub fn max_overlap(&mut self, bodies: &[Body]) -> f64 {
+        self.boxes.clear();
+        self.boxes.extend(
+            bodies
+                .iter()
+                .map(|b| Aabb::swept(b.position(), b.position(), b.radius(), 0.0)),
+        );
+        let mut worst = 0.0f64;
+        self.sweep.pairs(&self.boxes, |i, j| {
+            let (a, b) = (&bodies[i], &bodies[j]);
+            if a.is_fixed() && b.is_fixed() {
+                return;
+            }
+            let overlap = a.radius() + b.radius() - (b.position() - a.position()).length();
+            worst = worst.max(overlap);
+        });
+        worst
+    }
+}
+
+/// The box a segment sweeps over the rest of the step, grown by the contact tolerance.
+fn swept_box(segment: &Segment, dt: f64, settings: &Settings) -> Aabb {
+    let margin = settings.tolerance.epsilon() * (1.0 + 2.0 * segment.radius);
+    Aabb::swept(
+        segment.position,
+        segment.position_at(dt),
+        segment.radius,
+        margin,
+    )
+}

@@ -1,0 +1,64 @@
+//! What a step did and the state it left: collisions, energy, momentum, overlap.
+
+use glam::DVec3;
+
+use crate::BodyId;
+
+/// Statistics of one step, as returned by [`World::step`](crate::World::step).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepStats {
+    /// Simulated time at the end of the step.
+    pub time: f64,
+    /// Length of the step.
+    pub dt: f64,
+    /// Collisions resolved (impulses applied), resting contacts included.
+    pub collisions: u32,
+    /// Of those, collisions slower than the relative acceleration gains in
+    /// [`Settings::resting_factor`](crate::Settings::resting_factor) steps, resolved with
+    /// restitution 0 so that bodies at rest stay at rest.
+    pub resting_contacts: u32,
+    /// Collisions found but not resolved because the step's budget
+    /// ([`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)) ran out.
+    /// Non-zero means the step was cut short: bodies may be left overlapping until the next step.
+    pub collisions_deferred: u32,
+    /// Pairs handed to the time-of-impact method.
+    pub toi_tests: u64,
+    /// Iterations the time-of-impact method spent (bisection steps; 0 for the exact method).
+    pub toi_iterations: u64,
+    /// Kinetic energy of the dynamic bodies at the end of the step.
+    pub kinetic_energy: f64,
+    /// Potential energy of the dynamic bodies in gravity and their constant applied forces,
+    /// `-(m g + F) . x`, at the end of the step.
+    pub potential_energy: f64,
+    /// Total momentum of the dynamic bodies at the end of the step.
+    pub momentum: DVec3,
+    /// Largest overlap (sum of radii minus centre distance) between any two bodies, at least one
+    /// of them dynamic, at the end of the step; 0 if none overlap.
+    pub max_overlap: f64,
+}
+
+impl StepStats {
+    /// Kinetic plus potential energy.
+    pub fn total_energy(&self) -> f64 {
+        self.kinetic_energy + self.potential_energy
+    }
+}
+
+/// One resolved collision, as listed by [`World::collisions`](crate::World::collisions).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Collision {
+    /// The body with the smaller id.
+    pub a: BodyId,
+    /// The body with the larger id.
+    pub b: BodyId,
+    /// Simulated time of the impact.
+    pub time: f64,
+    /// Unit normal from `a`'s centre to `b`'s at impact.
+    pub normal: DVec3,
+    /// The contact point on `a`'s surface.
+    pub point: DVec3,
+    /// Magnitude of the impulse applied along the normal (momentum transferred).
+    pub impulse: f64,
+    /// Whether this was treated as a resting contact (restitution 0).
+    pub resting: bool,
+}

@@ -1,0 +1,327 @@
+//! The world: bodies, settings, and the step.
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::body::Field;
+use crate::contact::{ContactKind, Kinematics, classify};
+use crate::solver::{Solver, StepContext};
+use crate::{
+    Body, BodyError, BodyId, Collision, CombineRule, Integrator, IntegratorKind, SphereDesc,
+    StepStats, TimeOfImpact, ToiMethod, Tolerance,
+};
+
+/// World settings. Plain data: change them between steps through [`World::settings_mut`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Settings {
+    /// Gravitational acceleration applied to every dynamic body.
+    pub gravity: DVec3,
+    /// Time-of-impact method (unless replaced with [`World::set_time_of_impact`]).
+    pub method: ToiMethod,
+    /// Integrator (unless replaced with [`World::set_integrator`]).
+    pub integrator: IntegratorKind,
+    /// Tolerance for every equality test (touching, zero normal speed).
+    pub tolerance: Tolerance,
+    /// How two bodies' restitutions combine.
+    pub restitution_combine: CombineRule,
+    /// A collision whose approach speed is at most this many steps' worth of the relative
+    /// acceleration pressing the pair together is a resting contact and is resolved with
+    /// restitution 0: a ball at rest on another stays at rest instead of jittering, and a bouncing
+    /// ball comes to rest instead of bouncing ever lower forever. Default 1.5; 0 disables it.
+    pub resting_factor: f64,
+    /// The step's collision budget is this times the number of dynamic bodies; collisions beyond it
+    /// are deferred to the next step and counted in [`StepStats::collisions_deferred`].
+    pub max_collisions_per_body: u32,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            gravity: DVec3::ZERO,
+            method: ToiMethod::Exact,
+            integrator: IntegratorKind::SemiImplicitEuler,
+            tolerance: Tolerance::DEFAULT,
+            restitution_combine: CombineRule::Min,
+            resting_factor: 1.5,
+            max_collisions_per_body: 64,
+        }
+    }
+}
+
+impl Settings {
+    /// Settings with the given gravity, defaults otherwise.
+    pub fn with_gravity(gravity: DVec3) -> Self {
+        Settings {
+            gravity,
+            ..Default::default()
+        }
+    }
+
+    /// Sets the time-of-impact method.
+    pub fn method(mut self, method: ToiMethod) -> Self {
+        self.method = method;
+        self
+    }
+}
+
+/// What can go wrong when changing or stepping a world.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum WorldError {
+    /// A body's field is invalid.
+    #[error(transparent)]
+    Body(#[from] BodyError),
+    /// No body has this id (never added, or removed).
+    #[error("no body {0}")]
+    UnknownBody(BodyId),
+    /// The time step is not finite and > 0.
+    #[error("time step must be finite and > 0, got {0}")]
+    InvalidTimeStep(f64),
+}
+
+/// A world of spheres.
+///
+/// ```
+/// use sphere_physics::{glam::DVec3, Settings, SphereDesc, World};
+///
+/// let mut world = World::new(Settings::default());
+/// let a = world.add_sphere(SphereDesc::new(0.5).moving(DVec3::X))?;
+/// let b = world.add_sphere(SphereDesc::new(0.5).at(DVec3::new(2.0, 0.0, 0.0)))?;
+/// for _ in 0..120 {
+///     world.step(1.0 / 60.0)?;
+/// }
+/// // Equal masses, elastic: the velocities are exchanged.
+/// assert_eq!(world.body(a).unwrap().velocity(), DVec3::ZERO);
+/// assert_eq!(world.body(b).unwrap().velocity(), DVec3::X);
+/// # Ok::<(), sphere_physics::WorldError>(())
+/// ```
+#[derive(Debug, Default)]
+pub struct World {
+    settings: Settings,
+    integrator: Option<Box<dyn Integrator>>,
+    toi: Option<Box<dyn TimeOfImpact>>,
+    /// Live bodies, sorted by id.
+    bodies: Vec<Body>,
+    next_id: u32,
+    time: f64,
+    steps: u64,
+    stats: StepStats,
+    solver: Solver,
+}
+
+impl World {
+    /// An empty world.
+    pub fn new(settings: Settings) -> Self {
+        World {
+            settings,
+            ..Default::default()
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The settings, to change between steps.
+    pub fn settings_mut(&mut self) -> &mut Settings {
+        &mut self.settings
+    }
+
+    /// Replaces the integrator chosen in the settings with a custom one.
+    pub fn set_integrator(&mut self, integrator: Box<dyn Integrator>) {
+        self.integrator = Some(integrator);
+    }
+
+    /// Replaces the time-of-impact method chosen in the settings with a custom one.
+    pub fn set_time_of_impact(&mut self, toi: Box<dyn TimeOfImpact>) {
+        self.toi = Some(toi);
+    }
+
+    /// Adds a sphere; on invalid input nothing is added and the error names the body and field.
+    pub fn add_sphere(&mut self, desc: SphereDesc) -> Result<BodyId, BodyError> {
+        let id = BodyId(self.next_id);
+        desc.validate(|| label(desc.name.as_deref(), id))?;
+        self.next_id += 1;
+        self.bodies.push(Body::new(id, desc));
+        Ok(id)
+    }
+
+    /// Removes a body, returning it.
+    pub fn remove_body(&mut self, id: BodyId) -> Option<Body> {
+        let index = self.index(id).ok()?;
+        Some(self.bodies.remove(index))
+    }
+
+    /// The body with this id.
+    pub fn body(&self, id: BodyId) -> Option<&Body> {
+        self.index(id).ok().map(|i| &self.bodies[i])
+    }
+
+    /// All bodies, in id order (the order they were added).
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
+    }
+
+    /// Number of bodies.
+    pub fn len(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Whether the world has no bodies.
+    pub fn is_empty(&self) -> bool {
+        self.bodies.is_empty()
+    }
+
+    /// Replaces a body's description (position, velocity, radius, ...), validated as on adding.
+    pub fn set_desc(&mut self, id: BodyId, desc: SphereDesc) -> Result<(), WorldError> {
+        let index = self.index(id)?;
+        desc.validate(|| label(desc.name.as_deref(), id))?;
+        self.bodies[index] = Body::new(id, desc);
+        Ok(())
+    }
+
+    /// Sets a body's velocity.
+    pub fn set_velocity(&mut self, id: BodyId, velocity: DVec3) -> Result<(), WorldError> {
+        self.update(id, Field::Velocity, velocity, |d, v| d.velocity = v)
+    }
+
+    /// Sets a body's position.
+    pub fn set_position(&mut self, id: BodyId, position: DVec3) -> Result<(), WorldError> {
+        self.update(id, Field::Position, position, |d, v| d.position = v)
+    }
+
+    /// Sets a body's constant applied force.
+    pub fn set_force(&mut self, id: BodyId, force: DVec3) -> Result<(), WorldError> {
+        self.update(id, Field::Force, force, |d, v| d.force = v)
+    }
+
+    fn update(
+        &mut self,
+        id: BodyId,
+        field: Field,
+        value: DVec3,
+        set: impl FnOnce(&mut SphereDesc, DVec3),
+    ) -> Result<(), WorldError> {
+        let index = self.index(id)?;
+        if let Some(bad) = value.to_array().into_iter().find(|c| !c.is_finite()) {
+            let body = &self.bodies[index];
+            return Err(BodyError {
+                body: label(body.name(), id),
+                field,
+                value: bad,
+                reason: "must be finite",
+            }
+            .into());
+        }
+        set(&mut self.bodies[index].desc, value);
+        Ok(())
+    }
+
+    fn index(&self, id: BodyId) -> Result<usize, WorldError> {
+        self.bodies
+            .binary_search_by_key(&id, |b| b.id)
+            .map_err(|_| WorldError::UnknownBody(id))
+    }
+
+    /// Simulated time.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Statistics of the last step.
+    pub fn stats(&self) -> &StepStats {
+        &self.stats
+    }
+
+    /// The collisions resolved in the last step, in the order they were resolved (time order).
+    pub fn collisions(&self) -> &[Collision] {
+        &self.solver.collisions
+    }
+
+    /// Advances the world by `dt`. On an invalid `dt` nothing changes.
+    pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(WorldError::InvalidTimeStep(dt));
+        }
+        let mut stats = StepStats {
+            dt,
+            ..Default::default()
+        };
+        let ctx = StepContext {
+            settings: &self.settings,
+            integrator: self
+                .integrator
+                .as_deref()
+                .unwrap_or(&self.settings.integrator),
+            toi: self.toi.as_deref().unwrap_or(&self.settings.method),
+            dt,
+            start_time: self.time,
+        };
+        self.solver.step(&mut self.bodies, &ctx, &mut stats);
+        self.steps += 1;
+        self.time += dt;
+        stats.time = self.time;
+        stats.kinetic_energy = self.kinetic_energy();
+        stats.potential_energy = self.potential_energy();
+        stats.momentum = self.momentum();
+        stats.max_overlap = self.solver.max_overlap(&self.bodies);
+        self.stats = stats;
+        Ok(&self.stats)
+    }
+
+    /// Kinetic energy of the dynamic bodies.
+    pub fn kinetic_energy(&self) -> f64 {
+        self.bodies.iter().map(Body::kinetic_energy).sum()
+    }
+
+    /// Potential energy of the dynamic bodies in gravity and their constant forces.
+    pub fn potential_energy(&self) -> f64 {
+        self.bodies
+            .iter()
+            .filter(|b| !b.is_fixed())
+            .map(|b| -(b.mass() * self.settings.gravity + b.force()).dot(b.position()))
+            .sum()
+    }
+
+    /// Total momentum of the dynamic bodies.
+    pub fn momentum(&self) -> DVec3 {
+        self.bodies.iter().map(Body::momentum).sum()
+    }
+
+    /// Largest overlap between two bodies, at least one of them dynamic (0 if none).
+    pub fn max_overlap(&mut self) -> f64 {
+        self.solver.max_overlap(&self.bodies)
+    }
+
+    /// How bodies `a` and `b` stand relative to each other right now.
+    pub fn classify(&self, a: BodyId, b: BodyId) -> Result<ContactKind, WorldError> {
+        let kin = |id| -> Result<Kinematics, WorldError> {
+            let body = self.body(id).ok_or(WorldError::UnknownBody(id))?;
+            Ok(Kinematics {
+                position: body.position(),
+                velocity: body.velocity(),
+                acceleration: if body.is_fixed() {
+                    DVec3::ZERO
+                } else {
+                    self.settings.gravity + body.force() * body.inverse_mass()
+                },
+                radius: body.radius(),
+            })
+        };
+        Ok(classify(&kin(a)?, &kin(b)?, self.settings.tolerance))
+    }
+}
+
+/// How errors name a body: its name in quotes, else its id.
+fn label(name: Option<&str>, id: BodyId) -> String {
+    match name {
+        Some(name) => format!("'{name}' ({id})"),
+        None => id.to_string(),
+    }
+}

@@ -135,7 +135,8 @@ impl SphereDesc {
         }
         let volume = 4.0 / 3.0 * PI * self.radius.powi(3);
         let mass = self.density * volume;
-        if !self.fixed && !(mass.is_finite() && mass > 0.0) {
+        let mass_ok = mass.is_finite() && mass > 0.0;
+        if !(self.fixed || mass_ok) {
             return Err(err(
                 Field::Density,
                 self.density,

@@ -78,9 +78,7 @@ pub fn classify(a: &Kinematics, b: &Kinematics, tol: Tolerance) -> ContactKind {
     }
     if approaching(normal_speed, tol) {
         ContactKind::Colliding
-    } else if !tol.is_zero(normal_speed) {
-        ContactKind::Separating
-    } else if (b.acceleration - a.acceleration).dot(n) > 0.0 {
+    } else if !tol.is_zero(normal_speed) || (b.acceleration - a.acceleration).dot(n) > 0.0 {
         ContactKind::Separating
     } else {
         ContactKind::Resting

@@ -150,21 +150,16 @@ impl TimeOfImpact for Bisection {
 }
 
 /// The built-in time-of-impact methods, as chosen in [`Settings`](crate::Settings) and scene files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ToiMethod {
     /// [`ExactToi`]: closed-form swept test. The default.
+    #[default]
     Exact,
     /// [`Bisection`] with the given number of iterations (the tutorial used 8).
     Bisection {
         /// Number of bisection steps.
         max_iterations: u32,
     },
-}
-
-impl Default for ToiMethod {
-    fn default() -> Self {
-        ToiMethod::Exact
-    }
 }
 
 impl TimeOfImpact for ToiMethod {

@@ -1,0 +1,151 @@
+//! More analytic cases: oblique, collision timing within a step, free fall, scene errors.
+use sphere_physics::{SceneDesc, SceneError, Settings, SphereDesc, ToiMethod, World, glam::DVec3};
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol * (1.0 + a.abs().max(b.abs()))
+}
+
+#[test]
+fn oblique_elastic_collision_conserves_and_matches() {
+    // b at rest; a hits it with the line of centres at 60 degrees from a's velocity.
+    let mut world = World::new(Settings::default());
+    let n = DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0);
+    let a = world
+        .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
+        .unwrap();
+    let b = world
+        .add_sphere(SphereDesc::new(0.5).at(n * 1.0).with_density(2.0))
+        .unwrap();
+    world.step(1e-3).unwrap();
+    let (ma, mb) = (1.0, 2.0);
+    let vn = DVec3::X.dot(n);
+    let vb_want = n * (2.0 * ma / (ma + mb) * vn);
+    let va_want = DVec3::X - n * (2.0 * mb / (ma + mb) * vn);
+    let va = world.body(a).unwrap().velocity();
+    let vb = world.body(b).unwrap().velocity();
+    assert!((va - va_want).length() < 1e-12 && (vb - vb_want).length() < 1e-12);
+}
+
+#[test]
+fn collision_at_three_quarters_and_two_pairs_in_one_step() {
+    let mut world = World::new(Settings::default());
+    // Pair 1 closes a gap of 1.5 at speed 2: t = 0.75. Pair 2 closes 0.5 at 2: t = 0.25.
+    let a = world
+        .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(2.5, 0.0, 0.0))
+                .moving(-DVec3::X),
+        )
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(0.0, 5.0, 0.0))
+                .moving(DVec3::X),
+        )
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(1.5, 5.0, 0.0))
+                .moving(-DVec3::X),
+        )
+        .unwrap();
+    world.step(1.0).unwrap();
+    let times: Vec<f64> = world.collisions().iter().map(|c| c.time).collect();
+    assert_eq!(times.len(), 2);
+    assert!(
+        close(times[0], 0.25, 1e-14) && close(times[1], 0.75, 1e-14),
+        "{times:?}"
+    );
+    // a reversed at 0.75, so it ends at 0.75 - 0.25 = 0.5.
+    assert!(close(world.body(a).unwrap().position().x, 0.5, 1e-14));
+}
+
+#[test]
+fn free_fall_matches_each_integrator() {
+    let g = -9.81;
+    let h = 1.0 / 60.0;
+    let steps = 120;
+    for (integrator, exact_parabola) in [
+        (sphere_physics::IntegratorKind::SemiImplicitEuler, false),
+        (sphere_physics::IntegratorKind::Leapfrog, true),
+    ] {
+        let mut settings = Settings::with_gravity(DVec3::new(0.0, g, 0.0));
+        settings.integrator = integrator;
+        let mut world = World::new(settings);
+        let ball = world
+            .add_sphere(SphereDesc::new(0.1).moving(DVec3::Y * 3.0))
+            .unwrap();
+        for _ in 0..steps {
+            world.step(h).unwrap();
+        }
+        let t = steps as f64 * h;
+        let n = steps as f64;
+        let want = if exact_parabola {
+            3.0 * t + 0.5 * g * t * t
+        } else {
+            // Semi-implicit Euler: y_n = v0 n h + g h^2 n (n + 1) / 2.
+            3.0 * t + g * h * h * n * (n + 1.0) / 2.0
+        };
+        let y = world.body(ball).unwrap().position().y;
+        assert!(close(y, want, 1e-12), "{integrator:?}: {y} vs {want}");
+        assert!(close(
+            world.body(ball).unwrap().velocity().y,
+            3.0 + g * t,
+            1e-12
+        ));
+    }
+}
+
+#[test]
+fn bisection_converges_to_exact_in_a_world() {
+    let run = |method| {
+        let mut world = World::new(Settings::default().method(method));
+        let a = world
+            .add_sphere(SphereDesc::new(0.5).moving(DVec3::new(1.3, 0.2, 0.0)))
+            .unwrap();
+        world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(DVec3::new(1.9, 0.3, 0.0))
+                    .with_density(3.0),
+            )
+            .unwrap();
+        for _ in 0..60 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        world.body(a).unwrap().velocity()
+    };
+    let exact = run(ToiMethod::Exact);
+    let mut last = f64::INFINITY;
+    for n in [2, 6, 12, 20] {
+        let err = (run(ToiMethod::Bisection { max_iterations: n }) - exact).length();
+        assert!(err <= last, "n={n}: {err} > {last}");
+        last = err;
+    }
+    assert!(last < 1e-4, "{last}");
+}
+
+#[test]
+fn scene_parse_errors_say_where() {
+    let err = SceneDesc::from_ron(
+        "(\n  name: \"x\",\n  spheres: [ (position: (0.0, 0.0), radius: 1.0) ],\n)",
+    )
+    .unwrap_err();
+    match err {
+        SceneError::Parse { line, column, .. } => assert_eq!((line, column > 1), (3, true)),
+        other => panic!("{other}"),
+    }
+    let bad = SceneDesc::from_ron(
+        "(name: \"x\", spheres: [(name: \"s\", position: (0.0, 0.0, 0.0), radius: 0.0)])",
+    )
+    .unwrap();
+    let msg = bad.build().unwrap_err().to_string();
+    assert!(msg.contains("'s'") && msg.contains("radius"), "{msg}");
+    let scene = SceneDesc::from_ron(&bad.to_ron()).unwrap();
+    assert_eq!(scene, bad);
+}

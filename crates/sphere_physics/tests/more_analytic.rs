@@ -6,24 +6,61 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
 }
 
 #[test]
-fn oblique_elastic_collision_conserves_and_matches() {
+fn oblique_elastic_collisions_match_for_density_ratios_1_2_3() {
     // b at rest; a hits it with the line of centres at 60 degrees from a's velocity.
-    let mut world = World::new(Settings::default());
-    let n = DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0);
-    let a = world
-        .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
-        .unwrap();
-    let b = world
-        .add_sphere(SphereDesc::new(0.5).at(n * 1.0).with_density(2.0))
-        .unwrap();
-    world.step(1e-3).unwrap();
-    let (ma, mb) = (1.0, 2.0);
-    let vn = DVec3::X.dot(n);
-    let vb_want = n * (2.0 * ma / (ma + mb) * vn);
-    let va_want = DVec3::X - n * (2.0 * mb / (ma + mb) * vn);
-    let va = world.body(a).unwrap().velocity();
-    let vb = world.body(b).unwrap().velocity();
-    assert!((va - va_want).length() < 1e-12 && (vb - vb_want).length() < 1e-12);
+    for (ra, rb) in [(1.0, 2.0), (1.0, 3.0), (2.0, 3.0), (3.0, 1.0)] {
+        let mut world = World::new(Settings::default());
+        let n = DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0);
+        let a = world
+            .add_sphere(SphereDesc::new(0.5).moving(DVec3::X).with_density(ra))
+            .unwrap();
+        let b = world
+            .add_sphere(SphereDesc::new(0.5).at(n * 1.0).with_density(rb))
+            .unwrap();
+        let e0 = world.kinetic_energy();
+        world.step(1e-3).unwrap();
+        let vn = DVec3::X.dot(n);
+        let vb_want = n * (2.0 * ra / (ra + rb) * vn);
+        let va_want = DVec3::X - n * (2.0 * rb / (ra + rb) * vn);
+        let va = world.body(a).unwrap().velocity();
+        let vb = world.body(b).unwrap().velocity();
+        assert!((va - va_want).length() < 1e-12 && (vb - vb_want).length() < 1e-12);
+        assert!(close(world.kinetic_energy(), e0, 1e-12), "energy {ra}:{rb}");
+    }
+}
+
+#[test]
+fn classification_of_contacts() {
+    use sphere_physics::ContactKind;
+    let g = DVec3::new(0.0, -9.81, 0.0);
+    let mut world = World::new(Settings::with_gravity(g));
+    let floor = world.add_sphere(SphereDesc::new(1.0).fixed()).unwrap();
+    let mut at = |y: f64, vy: f64| {
+        world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(DVec3::new(0.0, y, 0.0))
+                    .moving(DVec3::Y * vy),
+            )
+            .unwrap()
+    };
+    let apart = at(2.0, 0.0);
+    let colliding = at(1.5, -1.0);
+    let separating = at(1.5, 1.0);
+    let resting = at(1.5, 0.0);
+    let deep = at(1.0, -1.0);
+    let leaving = at(1.0, 1.0);
+    let kind = |id| world.classify(floor, id).unwrap();
+    assert_eq!(kind(apart), ContactKind::Apart);
+    assert_eq!(kind(colliding), ContactKind::Colliding);
+    assert_eq!(kind(separating), ContactKind::Separating);
+    assert_eq!(kind(resting), ContactKind::Resting);
+    assert_eq!(kind(deep), ContactKind::Intersecting { approaching: true });
+    assert_eq!(
+        kind(leaving),
+        ContactKind::Intersecting { approaching: false }
+    );
+    assert!(kind(colliding).needs_response() && !kind(leaving).needs_response());
 }
 
 #[test]

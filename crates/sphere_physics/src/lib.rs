@@ -15,7 +15,8 @@
 //! - [`toi`]: time of impact behind the [`TimeOfImpact`] trait;
 //! - [`response`]: the impulse, [`resolve`];
 //! - [`world`]: the [`World`] and its [`Settings`];
-//! - [`scene`]: scene files ([`SceneDesc`]).
+//! - [`scene`]: scene files ([`SceneDesc`]);
+//! - [`generate`]: seeded generators of many spheres ([`generate::Generator`]).
 //!
 //! ```
 //! use sphere_physics::{glam::DVec3, Settings, SphereDesc, World};
@@ -38,6 +39,7 @@
 pub mod body;
 mod broad_phase;
 pub mod contact;
+pub mod generate;
 pub mod integrator;
 pub mod response;
 pub mod scene;

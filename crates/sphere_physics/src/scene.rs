@@ -24,6 +24,7 @@ use glam::DVec3;
 use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
 
+use crate::generate::{GenerateError, Generator};
 use crate::{BodyError, IntegratorKind, Settings, SphereDesc, ToiMethod, World};
 
 fn one() -> f64 {
@@ -55,7 +56,11 @@ pub struct SceneDesc {
     #[serde(default)]
     pub dt: Option<f64>,
     /// The spheres; their order is their body ids' order.
+    #[serde(default)]
     pub spheres: Vec<SphereSpec>,
+    /// Generators of many spheres, added after `spheres` in this order (default none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub generate: Vec<Generator>,
 }
 
 /// One sphere in a scene file.
@@ -112,6 +117,9 @@ pub enum SceneError {
     /// A sphere is invalid.
     #[error("{0}")]
     Sphere(#[from] BodyError),
+    /// A generator cannot make its spheres.
+    #[error("{0}")]
+    Generate(#[from] GenerateError),
     /// A scene-wide setting is invalid.
     #[error("scene {field} {reason}, got {value}")]
     Setting {
@@ -204,24 +212,38 @@ impl SceneDesc {
         })
     }
 
-    /// The sphere descriptions, with the scene's defaults filled in.
-    pub fn sphere_descs(&self) -> impl Iterator<Item = SphereDesc> + '_ {
-        self.spheres.iter().map(|s| SphereDesc {
-            name: s.name.clone(),
-            position: s.position.into(),
-            velocity: s.velocity.into(),
-            radius: s.radius,
-            density: s.density,
-            restitution: s.restitution.unwrap_or(self.restitution),
-            force: s.force.into(),
-            fixed: s.fixed,
-        })
+    /// Every sphere of the scene: the listed ones, then each generator's, in order.
+    pub fn all_spheres(&self) -> Result<Vec<SphereSpec>, SceneError> {
+        let mut all = self.spheres.clone();
+        for (index, generator) in self.generate.iter().enumerate() {
+            all.extend(generator.spheres_at(index)?);
+        }
+        Ok(all)
+    }
+
+    /// The description of every sphere (see [`SceneDesc::all_spheres`]), with the scene's
+    /// defaults filled in.
+    pub fn sphere_descs(&self) -> Result<Vec<SphereDesc>, SceneError> {
+        Ok(self
+            .all_spheres()?
+            .into_iter()
+            .map(|s| SphereDesc {
+                name: s.name,
+                position: s.position.into(),
+                velocity: s.velocity.into(),
+                radius: s.radius,
+                density: s.density,
+                restitution: s.restitution.unwrap_or(self.restitution),
+                force: s.force.into(),
+                fixed: s.fixed,
+            })
+            .collect())
     }
 
     /// Builds the world: the first invalid sphere, if any, is reported by name or index.
     pub fn build(&self) -> Result<World, SceneError> {
         let mut world = World::new(self.settings()?);
-        for desc in self.sphere_descs() {
+        for desc in self.sphere_descs()? {
             world.add_sphere(desc)?;
         }
         Ok(world)

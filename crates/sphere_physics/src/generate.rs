@@ -1,0 +1,370 @@
+//! Scene generators: many spheres from a few numbers and a seed.
+//!
+//! A generator places spheres on a jittered lattice inside a box, so no two of them overlap
+//! whatever the seed, and draws their jitter (and, for a gas, their directions) from a small
+//! seeded generator of its own. The same seed gives the same spheres, bit for bit, on every
+//! machine and with every version of the crate's dependencies.
+//!
+//! ```
+//! use sphere_physics::generate::Generator;
+//!
+//! let shower = Generator::Shower {
+//!     count: 100,
+//!     seed: 1,
+//!     min: [-1.0, 2.0, -1.0],
+//!     max: [1.0, 4.0, 1.0],
+//!     radius: 0.05,
+//!     velocity: [0.0, 0.0, 0.0],
+//!     density: 1.0,
+//!     restitution: None,
+//! };
+//! let spheres = shower.spheres()?;
+//! assert_eq!(spheres.len(), 100);
+//! assert_eq!(spheres, shower.spheres()?);
+//! # Ok::<(), sphere_physics::generate::GenerateError>(())
+//! ```
+
+use serde::{Deserialize, Serialize};
+
+use crate::SphereSpec;
+
+fn one() -> f64 {
+    1.0
+}
+
+fn wall_radius() -> f64 {
+    1.0e4
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// A recipe for many spheres.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Generator {
+    /// `count` spheres of one radius, at rest or with one common velocity, in the box
+    /// `min..max` (typically above a large fixed sphere, to fall onto it).
+    Shower {
+        /// How many spheres.
+        count: u32,
+        /// Seed of the jitter.
+        seed: u64,
+        /// Lower corner of the box the sphere centres and surfaces stay inside.
+        min: [f64; 3],
+        /// Upper corner of the box.
+        max: [f64; 3],
+        /// Radius of every sphere.
+        radius: f64,
+        /// Common initial velocity (default 0).
+        #[serde(default)]
+        velocity: [f64; 3],
+        /// Density (default 1).
+        #[serde(default = "one")]
+        density: f64,
+        /// Restitution (default: the scene's).
+        #[serde(default)]
+        restitution: Option<f64>,
+    },
+    /// `count` spheres of one radius moving at `speed` in random directions inside the box
+    /// `min..max`, closed (by default) by six fixed walls: spheres of radius `wall_radius`
+    /// whose surfaces touch the box's faces, flat to within `size² / (8 · wall_radius)`.
+    Gas {
+        /// How many spheres.
+        count: u32,
+        /// Seed of the jitter and the directions.
+        seed: u64,
+        /// Lower corner of the box.
+        min: [f64; 3],
+        /// Upper corner of the box.
+        max: [f64; 3],
+        /// Radius of every sphere.
+        radius: f64,
+        /// Speed of every sphere.
+        speed: f64,
+        /// Density (default 1).
+        #[serde(default = "one")]
+        density: f64,
+        /// Restitution (default: the scene's).
+        #[serde(default)]
+        restitution: Option<f64>,
+        /// Close the box with six fixed wall spheres (default true).
+        #[serde(default = "yes")]
+        walls: bool,
+        /// Radius of the wall spheres (default 1e4).
+        #[serde(default = "wall_radius")]
+        wall_radius: f64,
+    },
+}
+
+/// Why a generator cannot make its spheres.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("generator {index} ({kind}): {field} {reason}")]
+pub struct GenerateError {
+    /// The generator's index in the scene's list.
+    pub index: usize,
+    /// `"Shower"` or `"Gas"`.
+    pub kind: &'static str,
+    /// The field that is wrong.
+    pub field: &'static str,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+/// SplitMix64: tiny, fast, and fully specified, so generated scenes never change.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// Uniform in 0..n.
+    fn below(&mut self, n: u64) -> u64 {
+        ((self.next_u64() as u128 * n as u128) >> 64) as u64
+    }
+
+    /// Uniform on the unit sphere.
+    fn direction(&mut self) -> [f64; 3] {
+        let z = 2.0 * self.unit() - 1.0;
+        let phi = std::f64::consts::TAU * self.unit();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        [r * phi.cos(), r * phi.sin(), z]
+    }
+}
+
+struct Lattice {
+    min: [f64; 3],
+    cell: f64,
+    counts: [u64; 3],
+}
+
+impl Lattice {
+    /// Cells of side `2 · radius · 1.1`, as many as fit in `min..max`.
+    fn new(min: [f64; 3], max: [f64; 3], radius: f64) -> Self {
+        let cell = 2.0 * radius * 1.1;
+        let counts = std::array::from_fn(|k| ((max[k] - min[k]) / cell).floor().max(0.0) as u64);
+        Self { min, cell, counts }
+    }
+
+    fn capacity(&self) -> u64 {
+        self.counts.iter().product()
+    }
+
+    /// The centre of cell `i`, moved by up to the cell's slack in each axis.
+    fn place(&self, i: u64, radius: f64, rng: &mut SplitMix64) -> [f64; 3] {
+        let [nx, ny, _] = self.counts;
+        let idx = [i % nx, (i / nx) % ny, i / (nx * ny)];
+        let slack = self.cell / 2.0 - radius;
+        std::array::from_fn(|k| {
+            let centre = self.min[k] + (idx[k] as f64 + 0.5) * self.cell;
+            centre + slack * (2.0 * rng.unit() - 1.0)
+        })
+    }
+}
+
+struct Checked {
+    index: usize,
+    kind: &'static str,
+}
+
+impl Checked {
+    fn err(&self, field: &'static str, reason: impl Into<String>) -> GenerateError {
+        GenerateError {
+            index: self.index,
+            kind: self.kind,
+            field,
+            reason: reason.into(),
+        }
+    }
+
+    fn positive(&self, field: &'static str, value: f64) -> Result<(), GenerateError> {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(self.err(field, format!("must be finite and > 0, got {value}")))
+        }
+    }
+
+    fn finite(&self, field: &'static str, value: &[f64]) -> Result<(), GenerateError> {
+        match value.iter().find(|v| !v.is_finite()) {
+            None => Ok(()),
+            Some(v) => Err(self.err(field, format!("must be finite, got {v}"))),
+        }
+    }
+
+    fn lattice(
+        &self,
+        count: u32,
+        min: [f64; 3],
+        max: [f64; 3],
+        radius: f64,
+    ) -> Result<Lattice, GenerateError> {
+        self.positive("radius", radius)?;
+        self.finite("min", &min)?;
+        self.finite("max", &max)?;
+        if let Some(k) = (0..3).find(|&k| max[k] <= min[k]) {
+            return Err(self.err(
+                "max",
+                format!(
+                    "must exceed min in every axis (axis {k}: {} <= {})",
+                    max[k], min[k]
+                ),
+            ));
+        }
+        let lattice = Lattice::new(min, max, radius);
+        if u64::from(count) > lattice.capacity() {
+            return Err(self.err(
+                "count",
+                format!(
+                    "{count} spheres of radius {radius} do not fit in the box (at most {})",
+                    lattice.capacity()
+                ),
+            ));
+        }
+        Ok(lattice)
+    }
+}
+
+/// Picks `count` distinct cells of `capacity` in a seeded order (a partial Fisher–Yates
+/// shuffle when the box is much larger than needed, every cell in turn otherwise).
+fn cells(count: u32, capacity: u64, rng: &mut SplitMix64) -> Vec<u64> {
+    let count = u64::from(count);
+    if capacity <= 4 * count.max(1) {
+        let mut all: Vec<u64> = (0..capacity).collect();
+        for i in 0..count.min(capacity) {
+            let j = i + rng.below(capacity - i);
+            all.swap(i as usize, j as usize);
+        }
+        all.truncate(count as usize);
+        all.sort_unstable();
+        all
+    } else {
+        // Sparse: rejection sampling into a sorted, deduplicated set.
+        let mut chosen = std::collections::BTreeSet::new();
+        while (chosen.len() as u64) < count {
+            chosen.insert(rng.below(capacity));
+        }
+        chosen.into_iter().collect()
+    }
+}
+
+impl Generator {
+    fn kind(&self) -> &'static str {
+        match self {
+            Generator::Shower { .. } => "Shower",
+            Generator::Gas { .. } => "Gas",
+        }
+    }
+
+    /// The spheres this generator makes (the generator being the first in its scene).
+    pub fn spheres(&self) -> Result<Vec<SphereSpec>, GenerateError> {
+        self.spheres_at(0)
+    }
+
+    /// The spheres this generator makes, with errors naming it as generator `index`.
+    pub fn spheres_at(&self, index: usize) -> Result<Vec<SphereSpec>, GenerateError> {
+        let check = Checked {
+            index,
+            kind: self.kind(),
+        };
+        match *self {
+            Generator::Shower {
+                count,
+                seed,
+                min,
+                max,
+                radius,
+                velocity,
+                density,
+                restitution,
+            } => {
+                let lattice = check.lattice(count, min, max, radius)?;
+                check.finite("velocity", &velocity)?;
+                let mut rng = SplitMix64(seed);
+                let picked = cells(count, lattice.capacity(), &mut rng);
+                Ok(picked
+                    .into_iter()
+                    .map(|cell| SphereSpec {
+                        name: None,
+                        position: lattice.place(cell, radius, &mut rng),
+                        velocity,
+                        radius,
+                        density,
+                        restitution,
+                        force: [0.0; 3],
+                        fixed: false,
+                    })
+                    .collect())
+            }
+            Generator::Gas {
+                count,
+                seed,
+                min,
+                max,
+                radius,
+                speed,
+                density,
+                restitution,
+                walls,
+                wall_radius,
+            } => {
+                let lattice = check.lattice(count, min, max, radius)?;
+                if !(speed.is_finite() && speed >= 0.0) {
+                    return Err(check.err("speed", format!("must be finite and >= 0, got {speed}")));
+                }
+                let mut rng = SplitMix64(seed);
+                let picked = cells(count, lattice.capacity(), &mut rng);
+                let mut spheres: Vec<SphereSpec> = picked
+                    .into_iter()
+                    .map(|cell| {
+                        let position = lattice.place(cell, radius, &mut rng);
+                        let velocity = rng.direction().map(|c| c * speed);
+                        SphereSpec {
+                            name: None,
+                            position,
+                            velocity,
+                            radius,
+                            density,
+                            restitution,
+                            force: [0.0; 3],
+                            fixed: false,
+                        }
+                    })
+                    .collect();
+                if walls {
+                    check.positive("wall_radius", wall_radius)?;
+                    let centre: [f64; 3] = std::array::from_fn(|k| 0.5 * (min[k] + max[k]));
+                    for axis in 0..3 {
+                        for (side, face) in [("min", min[axis]), ("max", max[axis])] {
+                            let mut position = centre;
+                            let outward = if side == "min" { -1.0 } else { 1.0 };
+                            position[axis] = face + outward * wall_radius;
+                            spheres.push(SphereSpec {
+                                name: Some(format!("wall {}{}", ["x", "y", "z"][axis], side)),
+                                position,
+                                velocity: [0.0; 3],
+                                radius: wall_radius,
+                                density: 1.0,
+                                restitution,
+                                force: [0.0; 3],
+                                fixed: true,
+                            });
+                        }
+                    }
+                }
+                Ok(spheres)
+            }
+        }
+    }
+}

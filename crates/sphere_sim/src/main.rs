@@ -1,0 +1,122 @@
+//! `sphere-sim run SCENE.ron --duration SECONDS`: see `sphere-sim --help`.
+//!
+//! Exit codes: 0 success; 2 bad input (usage, scene file, invalid sphere), with one line on
+//! standard error and no JSON written; 1 when writing the output fails.
+
+use std::process::ExitCode;
+
+use sphere_physics::SceneDesc;
+use sphere_sim::cli::{self, Command, Output, RunArgs};
+use sphere_sim::progress::Progress;
+use sphere_sim::run::{Playback, play};
+use sphere_sim::trace::{TraceRow, TraceWriter};
+
+/// A failure and the exit code it maps to.
+struct Failure {
+    code: u8,
+    message: String,
+}
+
+fn bad_input(message: impl ToString) -> Failure {
+    Failure {
+        code: 2,
+        message: message.to_string(),
+    }
+}
+
+fn io_failure(message: impl ToString) -> Failure {
+    Failure {
+        code: 1,
+        message: message.to_string(),
+    }
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = cli::parse(&args)
+        .map_err(bad_input)
+        .and_then(|command| match command {
+            Command::Help => {
+                println!("{}", cli::USAGE);
+                Ok(())
+            }
+            Command::Version => {
+                println!("sphere-sim {}", env!("CARGO_PKG_VERSION"));
+                Ok(())
+            }
+            Command::Run(run) => run_command(&run),
+        });
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => {
+            // One line, whatever the message holds.
+            let line = failure.message.replace('\n', " ");
+            eprintln!("sphere-sim: error: {line}");
+            ExitCode::from(failure.code)
+        }
+    }
+}
+
+fn run_command(args: &RunArgs) -> Result<(), Failure> {
+    let scene = SceneDesc::load(&args.scene).map_err(bad_input)?;
+    // Check the whole scene before creating any file.
+    scene.build().map_err(bad_input)?;
+    if let Output::File(path) = &args.output
+        && let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        return Err(bad_input(format!(
+            "--output {}: folder {} does not exist",
+            path.display(),
+            dir.display()
+        )));
+    }
+    let mut trace = match &args.trace {
+        Some((path, format)) => Some(
+            TraceWriter::create(path, *format)
+                .map_err(|e| bad_input(format!("{}: {e}", path.display())))?,
+        ),
+        None => None,
+    };
+    let mut trace_error = None;
+    let mut progress = Progress::new(args.progress);
+    let mut observer = |stats: &sphere_physics::StepStats, world: &sphere_physics::World, total| {
+        if let Some(writer) = trace.as_mut()
+            && trace_error.is_none()
+            && let Err(e) = writer.write(&TraceRow::new(world.steps(), stats))
+        {
+            trace_error = Some(e);
+        }
+        progress.update(world.steps(), total, world.time());
+    };
+    let playback = Playback {
+        duration: args.duration,
+        dt: args.dt,
+        method: args.method,
+    };
+    let report = play(&scene, playback, &mut observer).map_err(bad_input)?;
+    progress.finish();
+    if let Some(e) = trace_error {
+        return Err(io_failure(format!("writing the trace: {e}")));
+    }
+    if let Some(writer) = trace {
+        writer
+            .finish()
+            .map_err(|e| io_failure(format!("writing the trace: {e}")))?;
+    }
+    let mut json = serde_json::to_string_pretty(&report)
+        .map_err(|e| io_failure(format!("encoding the report: {e}")))?;
+    json.push('\n');
+    match &args.output {
+        Output::Stdout => {
+            use std::io::Write;
+            let mut out = std::io::stdout().lock();
+            out.write_all(json.as_bytes())
+                .and_then(|()| out.flush())
+                .map_err(|e| io_failure(format!("writing the report: {e}")))
+        }
+        Output::File(path) => {
+            std::fs::write(path, json).map_err(|e| io_failure(format!("{}: {e}", path.display())))
+        }
+    }
+}

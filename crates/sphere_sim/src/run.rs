@@ -1,0 +1,286 @@
+//! Playing a scene: step the world for a duration and report where everything ended.
+
+use std::time::Instant;
+
+use serde::Serialize;
+use sphere_physics::{SceneDesc, SceneError, StepStats, ToiMethod, World, WorldError};
+
+use crate::cli::method_name;
+
+/// How to play a scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Playback {
+    /// Simulated seconds.
+    pub duration: f64,
+    /// Time step; `None` means the scene's, else 1/60.
+    pub dt: Option<f64>,
+    /// Time-of-impact method; `None` means the scene's, else exact.
+    pub method: Option<ToiMethod>,
+}
+
+/// The default time step: 1/60 s.
+pub const DEFAULT_DT: f64 = 1.0 / 60.0;
+
+/// The most steps one run may take.
+pub const MAX_STEPS: u64 = 1_000_000_000;
+
+/// Why a scene could not be played.
+#[derive(Debug, thiserror::Error)]
+pub enum PlayError {
+    /// The scene is invalid.
+    #[error("{0}")]
+    Scene(#[from] SceneError),
+    /// The world refused a step.
+    #[error("{0}")]
+    World(#[from] WorldError),
+    /// The duration needs too many steps.
+    #[error(
+        "--duration {duration} at --dt {dt} needs {steps} steps, more than the limit of {MAX_STEPS}"
+    )]
+    TooManySteps {
+        /// Duration asked for.
+        duration: f64,
+        /// Step.
+        dt: f64,
+        /// Steps needed.
+        steps: f64,
+    },
+}
+
+/// The step plan for a duration: `full` steps of `dt`, then one of `last` if it is not 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepPlan {
+    /// Steps of the full `dt`.
+    pub full: u64,
+    /// The length of a final shorter step (0 if the duration is a whole number of steps).
+    pub last: f64,
+}
+
+impl StepPlan {
+    /// Splits `duration` into steps of `dt`. A duration within 1e-9 of a step of a whole
+    /// number of steps is that number of steps (so 2 s at 1/60 s is 120 steps).
+    pub fn new(duration: f64, dt: f64) -> Result<Self, PlayError> {
+        let ratio = duration / dt;
+        if ratio > MAX_STEPS as f64 {
+            return Err(PlayError::TooManySteps {
+                duration,
+                dt,
+                steps: ratio.ceil(),
+            });
+        }
+        let nearest = ratio.round();
+        if (ratio - nearest).abs() <= 1e-9 * ratio.max(1.0) && nearest >= 1.0 {
+            return Ok(Self {
+                full: nearest as u64,
+                last: 0.0,
+            });
+        }
+        let full = ratio.floor();
+        Ok(Self {
+            full: full as u64,
+            last: duration - full * dt,
+        })
+    }
+
+    /// Steps in all.
+    pub fn total(&self) -> u64 {
+        self.full + u64::from(self.last > 0.0)
+    }
+}
+
+/// One body at the end of a run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BodyReport {
+    /// The sphere's name, or its index in the scene as a string.
+    pub name: String,
+    /// Final position.
+    pub position: [f64; 3],
+    /// Final velocity.
+    pub velocity: [f64; 3],
+    /// Radius.
+    pub radius: f64,
+    /// Mass (`null` when fixed).
+    pub mass: Option<f64>,
+    /// Fixed.
+    pub fixed: bool,
+}
+
+/// Energy and momentum at one instant.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Snapshot {
+    /// Kinetic energy.
+    pub kinetic_energy: f64,
+    /// Potential energy in gravity and constant forces.
+    pub potential_energy: f64,
+    /// Their sum.
+    pub total_energy: f64,
+    /// Momentum of the dynamic bodies.
+    pub momentum: [f64; 3],
+}
+
+impl Snapshot {
+    fn of(world: &World) -> Self {
+        let (kinetic_energy, potential_energy) = (world.kinetic_energy(), world.potential_energy());
+        Self {
+            kinetic_energy,
+            potential_energy,
+            total_energy: kinetic_energy + potential_energy,
+            momentum: world.momentum().to_array(),
+        }
+    }
+}
+
+/// Statistics of a whole run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunStats {
+    /// Collisions resolved over the run (resting contacts included).
+    pub collisions: u64,
+    /// Of those, resolved as resting contacts (restitution 0).
+    pub resting_contacts: u64,
+    /// Collisions left to the next step by the per-step budget.
+    pub collisions_deferred: u64,
+    /// Time-of-impact tests.
+    pub toi_tests: u64,
+    /// Bisection iterations (0 for exact).
+    pub toi_iterations: u64,
+    /// Kinetic energy at the end.
+    pub kinetic_energy: f64,
+    /// Potential energy at the end.
+    pub potential_energy: f64,
+    /// Total energy at the end.
+    pub total_energy: f64,
+    /// Momentum at the end.
+    pub momentum: [f64; 3],
+    /// Largest overlap at the end.
+    pub max_overlap: f64,
+    /// Largest overlap at the end of any step.
+    pub max_overlap_seen: f64,
+    /// Wall-clock seconds spent stepping.
+    pub wall_seconds: f64,
+    /// Wall-clock nanoseconds per sphere per step.
+    pub ns_per_sphere_step: f64,
+}
+
+/// The JSON document a run prints.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    /// Scene name.
+    pub scene: String,
+    /// Method: `exact` or `bisection:N`.
+    pub method: String,
+    /// Integrator.
+    pub integrator: String,
+    /// Time step.
+    pub dt: f64,
+    /// Duration asked for.
+    pub duration: f64,
+    /// Simulated time reached.
+    pub time: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Spheres, in the scene file's order (listed spheres, then generated ones).
+    pub bodies: Vec<BodyReport>,
+    /// Energy and momentum before the first step.
+    pub initial: Snapshot,
+    /// Statistics of the run.
+    pub stats: RunStats,
+}
+
+/// Called after every step with the step's statistics, the world, and the step count planned.
+pub trait Observer {
+    /// One step is done.
+    fn step_done(&mut self, stats: &StepStats, world: &World, planned_steps: u64);
+}
+
+impl<F: FnMut(&StepStats, &World, u64)> Observer for F {
+    fn step_done(&mut self, stats: &StepStats, world: &World, planned_steps: u64) {
+        self(stats, world, planned_steps)
+    }
+}
+
+/// Builds the scene's world with `playback`'s overrides and plays it.
+pub fn play(
+    scene: &SceneDesc,
+    playback: Playback,
+    observer: &mut dyn Observer,
+) -> Result<Report, PlayError> {
+    let mut settings = scene.settings()?;
+    if let Some(method) = playback.method {
+        settings.method = method;
+    }
+    let dt = playback.dt.or(scene.dt).unwrap_or(DEFAULT_DT);
+    let plan = StepPlan::new(playback.duration, dt)?;
+    let specs = scene.all_spheres()?;
+    let mut world = World::new(settings);
+    for desc in scene.sphere_descs()? {
+        world.add_sphere(desc).map_err(SceneError::from)?;
+    }
+    let initial = Snapshot::of(&world);
+    let planned = plan.total();
+    let mut totals = (0u64, 0u64, 0u64, 0u64, 0u64);
+    let mut max_overlap_seen = world.max_overlap();
+
+    let mut stepping = std::time::Duration::ZERO;
+    for index in 0..planned {
+        let step_dt = if index < plan.full { dt } else { plan.last };
+        let started = Instant::now();
+        let stats = *world.step(step_dt)?;
+        stepping += started.elapsed();
+        totals.0 += u64::from(stats.collisions);
+        totals.1 += u64::from(stats.resting_contacts);
+        totals.2 += u64::from(stats.collisions_deferred);
+        totals.3 += stats.toi_tests;
+        totals.4 += stats.toi_iterations;
+        max_overlap_seen = max_overlap_seen.max(stats.max_overlap);
+        observer.step_done(&stats, &world, planned);
+    }
+    let wall_seconds = stepping.as_secs_f64();
+
+    let end = Snapshot::of(&world);
+    let max_overlap = world.max_overlap();
+    let bodies = world
+        .bodies()
+        .iter()
+        .zip(&specs)
+        .enumerate()
+        .map(|(i, (body, spec))| BodyReport {
+            name: spec.name.clone().unwrap_or_else(|| i.to_string()),
+            position: body.position().to_array(),
+            velocity: body.velocity().to_array(),
+            radius: body.radius(),
+            mass: (!body.is_fixed()).then(|| body.mass()),
+            fixed: body.is_fixed(),
+        })
+        .collect();
+    let sphere_steps = (world.len() as f64) * (world.steps() as f64);
+    Ok(Report {
+        scene: scene.name.clone(),
+        method: method_name(&world.settings().method),
+        integrator: format!("{:?}", world.settings().integrator),
+        dt,
+        duration: playback.duration,
+        time: world.time(),
+        steps: world.steps(),
+        bodies,
+        initial,
+        stats: RunStats {
+            collisions: totals.0,
+            resting_contacts: totals.1,
+            collisions_deferred: totals.2,
+            toi_tests: totals.3,
+            toi_iterations: totals.4,
+            kinetic_energy: end.kinetic_energy,
+            potential_energy: end.potential_energy,
+            total_energy: end.total_energy,
+            momentum: end.momentum,
+            max_overlap,
+            max_overlap_seen,
+            wall_seconds,
+            ns_per_sphere_step: if sphere_steps > 0.0 {
+                wall_seconds * 1e9 / sphere_steps
+            } else {
+                0.0
+            },
+        },
+    })
+}

@@ -1,0 +1,382 @@
+//! End-to-end tests: run the `sphere-sim` binary on scene files and check its JSON against
+//! analytic answers, and its handling of bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn sim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sphere-sim"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("sphere_sim_e2e");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn write_scene(name: &str, text: &str) -> PathBuf {
+    let path = scratch(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Runs successfully and parses the report.
+fn report(args: &[&str]) -> Value {
+    let out = sim(args);
+    assert!(
+        out.status.success(),
+        "sphere-sim {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("stdout is one JSON document")
+}
+
+fn body<'a>(report: &'a Value, name: &str) -> &'a Value {
+    report["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|b| b["name"] == name)
+        .unwrap_or_else(|| panic!("no body {name}"))
+}
+
+fn vec3(v: &Value) -> [f64; 3] {
+    let a = v.as_array().unwrap();
+    [0, 1, 2].map(|k| a[k].as_f64().unwrap())
+}
+
+fn assert_close(actual: [f64; 3], expected: [f64; 3], tol: f64, what: &str) {
+    for k in 0..3 {
+        assert!(
+            (actual[k] - expected[k]).abs() <= tol,
+            "{what}: got {actual:?}, expected {expected:?}"
+        );
+    }
+}
+
+/// Fails with exit code 2, one line on stderr and nothing on stdout.
+fn assert_bad_input(args: &[&str], needles: &[&str]) {
+    let out = sim(args);
+    assert_eq!(out.status.code(), Some(2), "args {args:?}");
+    assert!(out.stdout.is_empty(), "no JSON on bad input");
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "one line: {err}");
+    for needle in needles {
+        assert!(
+            err.contains(needle),
+            "stderr {err:?} should contain {needle:?}"
+        );
+    }
+}
+
+#[test]
+fn two_body_collision_matches_the_analytic_answer() {
+    // m1 = 1 · V, m2 = 3 · V (same radius): v1' = (m1 - m2)/(m1 + m2) · v1 = -v1/2,
+    // v2' = 2 m1/(m1 + m2) · v1 = v1/2. Contact when the gap of 2 closes at speed 2: t = 1.
+    let path = write_scene(
+        "two_body.ron",
+        r#"(
+            name: "two body",
+            spheres: [
+                (name: "light", position: (-2.0, 0.0, 0.0), velocity: (2.0, 0.0, 0.0), radius: 0.5),
+                (name: "heavy", position: (1.0, 0.0, 0.0), radius: 0.5, density: 3.0),
+            ],
+        )"#,
+    );
+    let r = report(&[
+        "run",
+        path.to_str().unwrap(),
+        "--duration",
+        "2.5",
+        "--dt",
+        "0.125",
+    ]);
+    assert_eq!(r["scene"], "two body");
+    assert_eq!(r["method"], "exact");
+    assert_eq!(r["steps"], 20);
+    assert_eq!(r["dt"], 0.125);
+    assert_eq!(r["time"], 2.5);
+    let (light, heavy) = (body(&r, "light"), body(&r, "heavy"));
+    assert_close(vec3(&light["velocity"]), [-1.0, 0.0, 0.0], 1e-14, "light v");
+    assert_close(vec3(&heavy["velocity"]), [1.0, 0.0, 0.0], 1e-14, "heavy v");
+    // At t = 1 the light one is at 0, the heavy one at 1; then 1.5 s apart at -1 and +1.
+    assert_close(vec3(&light["position"]), [-1.5, 0.0, 0.0], 1e-12, "light x");
+    assert_close(vec3(&heavy["position"]), [2.5, 0.0, 0.0], 1e-12, "heavy x");
+    let stats = &r["stats"];
+    assert_eq!(stats["collisions"], 1);
+    let m = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
+    assert_close(
+        vec3(&stats["momentum"]),
+        [2.0 * m, 0.0, 0.0],
+        1e-13,
+        "momentum",
+    );
+    let ke = stats["kinetic_energy"].as_f64().unwrap();
+    assert!((ke - 2.0 * m).abs() <= 1e-13, "kinetic energy {ke}");
+    assert_eq!(stats["max_overlap"], 0.0);
+    assert!(stats["wall_seconds"].as_f64().unwrap() >= 0.0);
+}
+
+#[test]
+fn bisection_is_selectable_and_reported() {
+    let scene = assets().join("two_spheres.ron");
+    let r = report(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--duration",
+        "2",
+        "--method",
+        "bisection:12",
+    ]);
+    assert_eq!(r["method"], "bisection:12");
+    assert!(r["stats"]["toi_iterations"].as_u64().unwrap() > 0);
+    let r = report(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--duration=1",
+        "--method=bisection",
+    ]);
+    assert_eq!(r["method"], "bisection:8");
+}
+
+#[test]
+fn touching_cradle_sends_exactly_one_ball_out() {
+    let scene = assets().join("touching_cradle.ron");
+    let r = report(&["run", scene.to_str().unwrap(), "--duration", "3"]);
+    // The striker closes the gap of 2 at speed 2: contact at t = 1; ball 4 then travels 2 s.
+    for name in ["striker", "ball 1", "ball 2", "ball 3"] {
+        assert_eq!(vec3(&body(&r, name)["velocity"]), [0.0; 3], "{name}");
+    }
+    let out = body(&r, "ball 4");
+    assert_eq!(vec3(&out["velocity"]), [2.0, 0.0, 0.0]);
+    assert_close(vec3(&out["position"]), [7.0, 1.5, 0.0], 1e-12, "ball 4");
+    assert_close(
+        vec3(&body(&r, "ball 1")["position"]),
+        [0.0, 1.5, 0.0],
+        1e-12,
+        "ball 1",
+    );
+    assert_close(
+        vec3(&body(&r, "striker")["position"]),
+        [-1.0, 1.5, 0.0],
+        1e-12,
+        "striker",
+    );
+}
+
+#[test]
+fn every_scene_file_runs() {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(assets()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "ron") {
+            let r = report(&["run", path.to_str().unwrap(), "--duration", "0.05"]);
+            assert_eq!(r["steps"], 3, "{}", path.display());
+            assert!(!r["bodies"].as_array().unwrap().is_empty());
+            names.push(r["scene"].as_str().unwrap().to_owned());
+        }
+    }
+    assert!(names.len() >= 8, "scenes: {names:?}");
+}
+
+#[test]
+fn same_input_gives_bit_identical_output() {
+    let scene = assets().join("gas_box.ron");
+    let run = || {
+        let mut r = report(&["run", scene.to_str().unwrap(), "--duration", "0.25"]);
+        r["stats"]["wall_seconds"] = Value::Null;
+        r["stats"]["ns_per_sphere_step"] = Value::Null;
+        serde_json::to_string(&r).unwrap()
+    };
+    assert_eq!(run(), run());
+}
+
+#[test]
+fn numbers_round_trip_exactly() {
+    // 0.1 + 0.2 style values survive the JSON unchanged.
+    let path = write_scene(
+        "round_trip.ron",
+        r#"(name: "rt", spheres: [(position: (0.1, 0.2, 0.30000000000000004), radius: 0.7)])"#,
+    );
+    let r = report(&["run", path.to_str().unwrap(), "--duration", "0.5"]);
+    let b = &r["bodies"][0];
+    assert_eq!(b["name"], "0", "unnamed spheres are named by index");
+    assert_eq!(vec3(&b["position"]), [0.1, 0.2, 0.30000000000000004]);
+}
+
+#[test]
+fn output_and_trace_files() {
+    let scene = assets().join("settling_ball.ron");
+    let (json, csv, jsonl) = (
+        scratch("out.json"),
+        scratch("trace.csv"),
+        scratch("trace.jsonl"),
+    );
+    let out = sim(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--duration",
+        "1",
+        "--output",
+        json.to_str().unwrap(),
+        "--trace",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    assert!(out.stdout.is_empty(), "the report went to the file");
+    let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(r["steps"], 60);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 61, "header and one row a step");
+    assert!(lines[0].starts_with("step,time,dt,collisions"));
+    assert!(lines[60].starts_with("60,"));
+    let collisions: u64 = lines[1..]
+        .iter()
+        .map(|l| l.split(',').nth(3).unwrap().parse::<u64>().unwrap())
+        .sum();
+    assert_eq!(collisions, r["stats"]["collisions"].as_u64().unwrap());
+
+    let r = report(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--duration",
+        "0.5",
+        "--trace",
+        jsonl.to_str().unwrap(),
+    ]);
+    let rows: Vec<Value> = std::fs::read_to_string(&jsonl)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(rows.len(), 30);
+    assert_eq!(rows[29]["total_energy"], r["stats"]["total_energy"]);
+}
+
+#[test]
+fn a_duration_that_is_not_a_whole_number_of_steps_ends_on_time() {
+    let scene = assets().join("two_spheres.ron");
+    let r = report(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--duration",
+        "0.3",
+        "--dt",
+        "0.125",
+    ]);
+    assert_eq!(r["steps"], 3);
+    assert!((r["time"].as_f64().unwrap() - 0.3).abs() < 1e-15);
+}
+
+#[test]
+fn missing_file() {
+    assert_bad_input(
+        &["run", "no/such/scene.ron", "--duration", "1"],
+        &["no/such/scene.ron"],
+    );
+}
+
+#[test]
+fn parse_error_gives_line_and_column() {
+    let path = write_scene(
+        "parse_error.ron",
+        "(\n  name: \"broken\",\n  spheres: [\n    (position: (0.0, 0.0), radius: 1.0),\n  ],\n)\n",
+    );
+    assert_bad_input(
+        &["run", path.to_str().unwrap(), "--duration", "1"],
+        &["parse_error.ron:4:"],
+    );
+}
+
+#[test]
+fn invalid_sphere_is_named_with_its_field() {
+    let path = write_scene(
+        "invalid_sphere.ron",
+        r#"(name: "bad", spheres: [
+            (name: "ok", position: (0.0, 0.0, 0.0), radius: 1.0),
+            (name: "flat", position: (5.0, 0.0, 0.0), radius: -2.0),
+        ])"#,
+    );
+    let json = scratch("never_written.json");
+    let _ = std::fs::remove_file(&json);
+    assert_bad_input(
+        &[
+            "run",
+            path.to_str().unwrap(),
+            "--duration",
+            "1",
+            "--output",
+            json.to_str().unwrap(),
+        ],
+        &["flat", "radius", "-2"],
+    );
+    assert!(!json.exists(), "no partial JSON");
+}
+
+#[test]
+fn invalid_generator_is_named() {
+    let path = write_scene(
+        "invalid_generator.ron",
+        r#"(name: "crowded", generate: [
+            Gas(count: 1000, seed: 1, min: (0.0, 0.0, 0.0), max: (1.0, 1.0, 1.0), radius: 0.1, speed: 1.0),
+        ])"#,
+    );
+    assert_bad_input(
+        &["run", path.to_str().unwrap(), "--duration", "1"],
+        &["generator 0", "count"],
+    );
+}
+
+#[test]
+fn bad_flag_values() {
+    let scene = assets().join("two_spheres.ron");
+    let scene = scene.to_str().unwrap();
+    assert_bad_input(&["run", scene, "--duration", "-1"], &["--duration", "-1"]);
+    assert_bad_input(&["run", scene, "--duration", "abc"], &["--duration"]);
+    assert_bad_input(&["run", scene, "--duration", "NaN"], &["--duration"]);
+    assert_bad_input(&["run", scene], &["--duration"]);
+    assert_bad_input(&["run", scene, "--duration", "1", "--dt", "0"], &["--dt"]);
+    assert_bad_input(
+        &["run", scene, "--duration", "1", "--method", "euler"],
+        &["--method", "euler"],
+    );
+    assert_bad_input(
+        &["run", scene, "--duration", "1", "--method", "bisection:99"],
+        &["bisection:N", "99"],
+    );
+    assert_bad_input(
+        &["run", scene, "--duration", "1", "--trace", "x.txt"],
+        &["--trace", "x.txt"],
+    );
+    assert_bad_input(&["run", scene, "--duration", "1", "--fast"], &["--fast"]);
+    assert_bad_input(&["run", scene, "--duration"], &["--duration needs a value"]);
+    assert_bad_input(&["fly"], &["fly"]);
+    assert_bad_input(&[], &["no command"]);
+    assert_bad_input(
+        &["run", scene, "--duration", "1e12", "--dt", "1e-6"],
+        &["steps"],
+    );
+}
+
+#[test]
+fn help_and_version() {
+    let out = sim(&["--help"]);
+    assert!(out.status.success());
+    assert!(
+        String::from_utf8(out.stdout)
+            .unwrap()
+            .contains("--duration")
+    );
+    let out = sim(&["--version"]);
+    assert!(out.status.success());
+}

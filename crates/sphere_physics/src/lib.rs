@@ -53,7 +53,7 @@ pub use body::{Body, BodyError, BodyId, Field, SphereDesc};
 pub use contact::{ContactKind, Kinematics, classify};
 pub use glam;
 pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};
-pub use response::{CombineRule, Resolution, resolve};
+pub use response::{CombineRule, GroupContact, Resolution, resolve, resolve_simultaneous};
 pub use scene::{SceneDesc, SceneError, SphereSpec};
 pub use stats::{Collision, StepStats};
 pub use toi::{Bisection, ExactToi, TimeOfImpact, ToiMethod, ToiOutcome};

@@ -12,7 +12,7 @@ use std::collections::BinaryHeap;
 use glam::DVec3;
 
 use crate::broad_phase::{Aabb, SweepAndPrune};
-use crate::response::resolve;
+use crate::response::{GroupContact, resolve, resolve_simultaneous};
 use crate::{Body, Collision, Integrator, Settings, StepStats, TimeOfImpact};
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
@@ -89,6 +89,54 @@ pub(crate) struct Solver {
     queue: BinaryHeap<Reverse<Event>>,
     sweep: SweepAndPrune,
     pub collisions: Vec<Collision>,
+    /// Scratch for simultaneous groups.
+    group: Vec<Event>,
+    ranges: Vec<std::ops::Range<usize>>,
+    touched: Vec<u32>,
+    local_resting: Vec<bool>,
+    local_bodies: Vec<u32>,
+    local_inverse_masses: Vec<f64>,
+    local_velocities: Vec<DVec3>,
+    local_contacts: Vec<GroupContact>,
+    local_impulses: Vec<f64>,
+}
+
+/// Orders `events` so that events connected by shared bodies are contiguous, and fills `ranges`
+/// with each connected group's range (events keep their time-then-id order within a group).
+fn sort_into_components(events: &mut [Event], ranges: &mut Vec<std::ops::Range<usize>>) {
+    ranges.clear();
+    let n = events.len();
+    if n <= 1 {
+        ranges.push(0..n);
+        return;
+    }
+    // Simultaneous groups are rare and small: label each event with the smallest index it is
+    // connected to, until nothing changes.
+    let shares = |x: &Event, y: &Event| x.a == y.a || x.a == y.b || x.b == y.a || x.b == y.b;
+    let mut label: Vec<usize> = (0..n).collect();
+    let mut changed = true;
+    while changed {
+        changed = false;
+        for i in 0..n {
+            for j in 0..n {
+                if label[j] < label[i] && shares(&events[i], &events[j]) {
+                    label[i] = label[j];
+                    changed = true;
+                }
+            }
+        }
+    }
+    let mut keyed: Vec<(usize, usize)> = label.iter().copied().zip(0..n).collect();
+    keyed.sort_unstable();
+    let sorted: Vec<Event> = keyed.iter().map(|&(_, i)| events[i]).collect();
+    events.copy_from_slice(&sorted);
+    let mut start = 0;
+    for i in 1..=n {
+        if i == n || keyed[i].0 != keyed[start].0 {
+            ranges.push(start..i);
+            start = i;
+        }
+    }
 }
 
 /// What the solver needs to know besides the bodies.
@@ -146,21 +194,60 @@ impl Solver {
         let budget = settings
             .max_collisions_per_body
             .saturating_mul(dynamic.max(1));
+        // Events closer in time than this are one simultaneous group.
+        let simultaneity = settings.tolerance.epsilon() * dt;
         while let Some(Reverse(event)) = self.queue.pop() {
-            let (a, b) = (event.a as usize, event.b as usize);
-            if self.segments[a].version != event.version_a
-                || self.segments[b].version != event.version_b
-            {
+            if !self.is_current(&event) {
                 continue;
             }
             if stats.collisions >= budget {
                 stats.collisions_deferred += 1;
                 continue;
             }
-            self.resolve_event(&event, bodies, ctx, stats);
-            for (k, skip) in [(a, usize::MAX), (b, a)] {
+            self.group.clear();
+            self.group.push(event);
+            while let Some(Reverse(next)) = self.queue.peek().copied() {
+                if next.time > event.time + simultaneity {
+                    break;
+                }
+                self.queue.pop();
+                if self.is_current(&next) {
+                    self.group.push(next);
+                }
+            }
+            self.touched.clear();
+            let mut group = std::mem::take(&mut self.group);
+            let mut ranges = std::mem::take(&mut self.ranges);
+            sort_into_components(&mut group, &mut ranges);
+            for range in ranges.iter().cloned() {
+                let component = &group[range];
+                if stats.collisions >= budget {
+                    stats.collisions_deferred += component.len() as u32;
+                    continue;
+                }
+                match component {
+                    [single] => self.resolve_event(single, bodies, ctx, stats),
+                    _ => self.resolve_group(component, event.time, bodies, ctx, stats),
+                }
+                for e in component.iter() {
+                    for k in [e.a, e.b] {
+                        if !self.touched.contains(&k) {
+                            self.touched.push(k);
+                        }
+                    }
+                }
+            }
+            self.group = group;
+            self.ranges = ranges;
+            // Test every pair involving a body just changed, once.
+            for ti in 0..self.touched.len() {
+                let k = self.touched[ti] as usize;
                 for m in 0..self.segments.len() {
-                    if m != k && m != skip && self.boxes[k].overlaps(&self.boxes[m]) {
+                    let m_touched = self.touched.contains(&(m as u32));
+                    if m == k || (m_touched && m < k) {
+                        continue;
+                    }
+                    if self.boxes[k].overlaps(&self.boxes[m]) {
                         self.test_pair(k.min(m), k.max(m), event.time, ctx, stats);
                     }
                 }
@@ -170,6 +257,102 @@ impl Solver {
         for (body, segment) in bodies.iter_mut().zip(&self.segments) {
             body.desc.position = segment.position_at(dt);
             body.desc.velocity = segment.velocity + segment.kick_after;
+        }
+    }
+
+    fn is_current(&self, event: &Event) -> bool {
+        self.segments[event.a as usize].version == event.version_a
+            && self.segments[event.b as usize].version == event.version_b
+    }
+
+    /// Resolves contacts that happen at one instant together (see [`resolve_simultaneous`]).
+    fn resolve_group(
+        &mut self,
+        events: &[Event],
+        t: f64,
+        bodies: &[Body],
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let settings = ctx.settings;
+        self.local_bodies.clear();
+        for e in events {
+            for k in [e.a, e.b] {
+                if !self.local_bodies.contains(&k) {
+                    self.local_bodies.push(k);
+                }
+            }
+        }
+        let local = |bodies: &[u32], k: u32| bodies.iter().position(|&b| b == k).unwrap_or(0);
+        self.local_inverse_masses.clear();
+        self.local_velocities.clear();
+        for &k in &self.local_bodies {
+            let segment = &mut self.segments[k as usize];
+            segment.advance_to(t);
+            self.local_inverse_masses.push(segment.inverse_mass);
+            self.local_velocities.push(segment.velocity);
+        }
+        self.local_contacts.clear();
+        self.local_resting.clear();
+        for e in events {
+            let (sa, sb) = (&self.segments[e.a as usize], &self.segments[e.b as usize]);
+            let d = sb.position - sa.position;
+            let distance = d.length();
+            if distance == 0.0 {
+                continue;
+            }
+            let normal = d / distance;
+            let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
+            let pressing = (-(sb.acceleration - sa.acceleration).dot(normal)).max(0.0);
+            let resting = approach_speed <= settings.resting_factor * pressing * ctx.dt;
+            self.local_resting.push(resting);
+            self.local_contacts.push(GroupContact {
+                a: local(&self.local_bodies, e.a),
+                b: local(&self.local_bodies, e.b),
+                normal,
+                restitution: if resting {
+                    0.0
+                } else {
+                    settings
+                        .restitution_combine
+                        .combine(sa.restitution, sb.restitution)
+                },
+            });
+        }
+        resolve_simultaneous(
+            &self.local_inverse_masses,
+            &mut self.local_velocities,
+            &self.local_contacts,
+            &mut self.local_impulses,
+        );
+        for (&k, &velocity) in self.local_bodies.iter().zip(&self.local_velocities) {
+            let segment = &mut self.segments[k as usize];
+            segment.velocity = velocity;
+            segment.version += 1;
+            self.boxes[k as usize] = swept_box(segment, ctx.dt, settings);
+        }
+        for ((c, &impulse), &resting) in self
+            .local_contacts
+            .iter()
+            .zip(&self.local_impulses)
+            .zip(&self.local_resting)
+        {
+            let (a, b) = (
+                self.local_bodies[c.a] as usize,
+                self.local_bodies[c.b] as usize,
+            );
+            stats.collisions += 1;
+            stats.resting_contacts += u32::from(resting);
+            let sa = &self.segments[a];
+            self.collisions.push(Collision {
+                a: bodies[a].id(),
+                b: bodies[b].id(),
+                time: ctx.start_time + t,
+                normal: c.normal,
+                point: sa.position + c.normal * sa.radius,
+                impulse,
+                resting,
+            });
         }
     }
 

@@ -111,9 +111,11 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         Output::Stdout => {
             use std::io::Write;
             let mut out = std::io::stdout().lock();
-            out.write_all(json.as_bytes())
-                .and_then(|()| out.flush())
-                .map_err(|e| io_failure(format!("writing the report: {e}")))
+            match out.write_all(json.as_bytes()).and_then(|()| out.flush()) {
+                // A reader that stopped early (`| head`) is not an error.
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+                other => other.map_err(|e| io_failure(format!("writing the report: {e}"))),
+            }
         }
         Output::File(path) => {
             std::fs::write(path, json).map_err(|e| io_failure(format!("{}: {e}", path.display())))

@@ -11,7 +11,7 @@ use std::collections::BinaryHeap;
 
 use glam::DVec3;
 
-use crate::broad_phase::{Aabb, SweepAndPrune};
+use crate::broad_phase::{Aabb, BroadPhase};
 use crate::response::{GroupContact, resolve, resolve_simultaneous};
 use crate::{Body, Collision, Integrator, Settings, StepStats, TimeOfImpact};
 
@@ -87,7 +87,8 @@ pub(crate) struct Solver {
     segments: Vec<Segment>,
     boxes: Vec<Aabb>,
     queue: BinaryHeap<Reverse<Event>>,
-    sweep: SweepAndPrune,
+    broad: BroadPhase,
+    candidates: Vec<u32>,
     pub collisions: Vec<Collision>,
     /// Scratch for simultaneous groups.
     group: Vec<Event>,
@@ -184,12 +185,13 @@ impl Solver {
         }
 
         // First impacts of every pair whose swept boxes meet.
-        let (mut sweep, boxes) = (
-            std::mem::take(&mut self.sweep),
+        let (mut broad, boxes) = (
+            std::mem::take(&mut self.broad),
             std::mem::take(&mut self.boxes),
         );
-        sweep.pairs(&boxes, |i, j| self.test_pair(i, j, 0.0, ctx, stats));
-        (self.sweep, self.boxes) = (sweep, boxes);
+        broad.rebuild(&boxes);
+        broad.pairs(&boxes, |i, j| self.test_pair(i, j, 0.0, ctx, stats));
+        (self.broad, self.boxes) = (broad, boxes);
 
         let budget = settings
             .max_collisions_per_body
@@ -231,7 +233,7 @@ impl Solver {
                 }
                 for e in component.iter() {
                     for k in [e.a, e.b] {
-                        if !self.touched.contains(&k) {
+                        if !self.segments[k as usize].is_fixed() && !self.touched.contains(&k) {
                             self.touched.push(k);
                         }
                     }
@@ -239,18 +241,25 @@ impl Solver {
             }
             self.group = group;
             self.ranges = ranges;
-            // Test every pair involving a body just changed, once.
+            // Test every pair involving a body just changed, once. (Fixed bodies never change.)
             for ti in 0..self.touched.len() {
                 let k = self.touched[ti] as usize;
-                for m in 0..self.segments.len() {
-                    let m_touched = self.touched.contains(&(m as u32));
-                    if m == k || (m_touched && m < k) {
+                self.broad.update(k, &self.boxes[k]);
+            }
+            for ti in 0..self.touched.len() {
+                let k = self.touched[ti] as usize;
+                let mut candidates = std::mem::take(&mut self.candidates);
+                candidates.clear();
+                self.broad
+                    .overlapping(k, &self.boxes, |m| candidates.push(m as u32));
+                for &m in &candidates {
+                    let m = m as usize;
+                    if m < k && self.touched.contains(&(m as u32)) {
                         continue;
                     }
-                    if self.boxes[k].overlaps(&self.boxes[m]) {
-                        self.test_pair(k.min(m), k.max(m), event.time, ctx, stats);
-                    }
+                    self.test_pair(k.min(m), k.max(m), event.time, ctx, stats);
                 }
+                self.candidates = candidates;
             }
         }
 
@@ -327,6 +336,9 @@ impl Solver {
         );
         for (&k, &velocity) in self.local_bodies.iter().zip(&self.local_velocities) {
             let segment = &mut self.segments[k as usize];
+            if segment.is_fixed() {
+                continue;
+            }
             segment.velocity = velocity;
             segment.version += 1;
             self.boxes[k as usize] = swept_box(segment, ctx.dt, settings);
@@ -430,6 +442,10 @@ impl Solver {
         );
         for (k, velocity) in [(a, r.velocity_a), (b, r.velocity_b)] {
             let segment = &mut self.segments[k];
+            if segment.is_fixed() {
+                // Unchanged: its other pending events stay valid.
+                continue;
+            }
             segment.velocity = velocity;
             segment.version += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, settings);
@@ -458,7 +474,8 @@ impl Solver {
                 .map(|b| Aabb::swept(b.position(), b.position(), b.radius(), 0.0)),
         );
         let mut worst = 0.0f64;
-        self.sweep.pairs(&self.boxes, |i, j| {
+        self.broad.rebuild(&self.boxes);
+        self.broad.pairs(&self.boxes, |i, j| {
             let (a, b) = (&bodies[i], &bodies[j]);
             if a.is_fixed() && b.is_fixed() {
                 return;

@@ -41,6 +41,25 @@ impl Aabb {
 
 const NONE: u32 = u32::MAX;
 
+/// A cell itself, then the 13 neighbours that follow it in (x, y, z) order: each unordered pair
+/// of neighbouring cells appears once among "cell and its forward neighbours".
+const FORWARD: [(i64, i64, i64); 14] = [
+    (0, 0, 0),
+    (0, 0, 1),
+    (0, 1, -1),
+    (0, 1, 0),
+    (0, 1, 1),
+    (1, -1, -1),
+    (1, -1, 0),
+    (1, -1, 1),
+    (1, 0, -1),
+    (1, 0, 0),
+    (1, 0, 1),
+    (1, 1, -1),
+    (1, 1, 0),
+    (1, 1, 1),
+];
+
 /// Below this many bodies, all pairs are tested directly.
 const SMALL_SCENE: usize = 24;
 
@@ -100,9 +119,19 @@ impl BroadPhase {
         let median = if self.scratch.is_empty() {
             1.0
         } else {
-            *self.scratch.select_nth_unstable_by(middle, f64::total_cmp).1
+            *self
+                .scratch
+                .select_nth_unstable_by(middle, f64::total_cmp)
+                .1
         };
-        self.base = if median > 0.0 { median } else { 1.0 };
+        // The base cell holds every typical body (up to twice the median size) on level 0.
+        let typical = self
+            .scratch
+            .iter()
+            .copied()
+            .filter(|&e| e <= 2.0 * median)
+            .fold(0.0f64, f64::max);
+        self.base = if typical > 0.0 { typical } else { 1.0 };
         self.cells.clear();
         self.inverse_cells.clear();
         for level in 0..=MAX_LEVEL {
@@ -129,7 +158,7 @@ impl BroadPhase {
 
     fn level_for(&self, b: &Aabb) -> u32 {
         let extent = b.extent();
-        if !(extent <= self.cells[MAX_LEVEL as usize]) {
+        if extent.is_nan() || extent > self.cells[MAX_LEVEL as usize] {
             return MAX_LEVEL;
         }
         let mut level = 0;
@@ -202,7 +231,8 @@ impl BroadPhase {
             let cell = self.cells[level as usize];
             let lo = self.key(level, q.lo - DVec3::splat(cell));
             let hi = self.key(level, q.hi);
-            let count = (hi.x - lo.x + 1) as f64 * (hi.y - lo.y + 1) as f64 * (hi.z - lo.z + 1) as f64;
+            let count =
+                (hi.x - lo.x + 1) as f64 * (hi.y - lo.y + 1) as f64 * (hi.z - lo.z + 1) as f64;
             if count > self.level_counts[level as usize] as f64 + 27.0 {
                 // A big box over a fine level: scanning the level's bodies is cheaper.
                 for (j, key) in self.keys.iter().enumerate() {
@@ -215,14 +245,7 @@ impl BroadPhase {
             for x in lo.x..=hi.x {
                 for y in lo.y..=hi.y {
                     for z in lo.z..=hi.z {
-                        let key = CellKey { level, x, y, z };
-                        let mut j = self.heads[key.bucket(self.mask)];
-                        while j != NONE {
-                            if self.keys[j as usize] == key {
-                                f(j as usize);
-                            }
-                            j = self.next[j as usize];
-                        }
+                        self.walk(CellKey { level, x, y, z }, f);
                     }
                 }
             }
@@ -241,15 +264,42 @@ impl BroadPhase {
             }
             return;
         }
-        // A pair is reported by the body on the lower level (or, on one level, the lower index).
+        // A pair on one level is reported once, from the cell pair's "forward" side: the body
+        // visits its own cell (partners of higher index) and the 13 cells after it. A pair
+        // across levels is reported by the body on the lower level.
         for (i, bi) in boxes.iter().enumerate() {
-            let level = self.keys[i].level;
-            self.visit(bi, level..=MAX_LEVEL, &mut |j| {
-                let lower = self.keys[j].level > level || j > i;
-                if lower && bi.overlaps(&boxes[j]) {
-                    f(i.min(j), i.max(j));
-                }
-            });
+            let key = self.keys[i];
+            for (n, (dx, dy, dz)) in FORWARD.iter().enumerate() {
+                let cell = CellKey {
+                    level: key.level,
+                    x: key.x + dx,
+                    y: key.y + dy,
+                    z: key.z + dz,
+                };
+                self.walk(cell, &mut |j| {
+                    if (n > 0 || j > i) && bi.overlaps(&boxes[j]) {
+                        f(i.min(j), i.max(j));
+                    }
+                });
+            }
+            if key.level < MAX_LEVEL {
+                self.visit(bi, key.level + 1..=MAX_LEVEL, &mut |j| {
+                    if bi.overlaps(&boxes[j]) {
+                        f(i.min(j), i.max(j));
+                    }
+                });
+            }
+        }
+    }
+
+    /// Calls `f(j)` for every body in `cell`.
+    fn walk(&self, cell: CellKey, f: &mut impl FnMut(usize)) {
+        let mut j = self.heads[cell.bucket(self.mask)];
+        while j != NONE {
+            if self.keys[j as usize] == cell {
+                f(j as usize);
+            }
+            j = self.next[j as usize];
         }
     }
 

@@ -22,7 +22,6 @@ struct Segment {
     position: DVec3,
     velocity: DVec3,
     kick_after: DVec3,
-    acceleration: DVec3,
     inverse_mass: f64,
     radius: f64,
     restitution: f64,
@@ -89,6 +88,11 @@ pub(crate) struct Solver {
     queue: BinaryHeap<Reverse<Event>>,
     broad: BroadPhase,
     candidates: Vec<u32>,
+    /// Collisions approaching no faster than this are resting contacts (restitution 0).
+    resting_speed: f64,
+    resting: Vec<RestingContact>,
+    touched_flags: Vec<u32>,
+    touched_epoch: u32,
     pub collisions: Vec<Collision>,
     /// Scratch for simultaneous groups.
     group: Vec<Event>,
@@ -140,6 +144,18 @@ fn sort_into_components(events: &mut [Event], ranges: &mut Vec<std::ops::Range<u
     }
 }
 
+/// A touching pair approaching slowly, solved with the others at the start of the step.
+#[derive(Clone, Copy, Debug)]
+struct RestingContact {
+    a: u32,
+    b: u32,
+    normal: DVec3,
+    impulse: f64,
+}
+
+/// The most Gauss–Seidel sweeps over the resting contacts in one step.
+const RESTING_SWEEPS: u32 = 64;
+
 /// What the solver needs to know besides the bodies.
 pub(crate) struct StepContext<'a> {
     pub settings: &'a Settings,
@@ -160,21 +176,22 @@ impl Solver {
         self.segments.clear();
         self.boxes.clear();
         let mut dynamic = 0u32;
+        let mut largest_acceleration = 0.0f64;
         for body in bodies.iter() {
-            let (acceleration, kicks) = if body.is_fixed() {
-                (DVec3::ZERO, Default::default())
+            let kicks = if body.is_fixed() {
+                Default::default()
             } else {
                 dynamic += 1;
                 let a = settings.gravity + body.force() * body.inverse_mass();
+                largest_acceleration = largest_acceleration.max(a.length());
                 let k = ctx.integrator.kicks(body.velocity(), a, dt);
-                (a, (k.before, k.after))
+                (k.before, k.after)
             };
             let segment = Segment {
                 t0: 0.0,
                 position: body.position(),
                 velocity: body.velocity() + kicks.0,
                 kick_after: kicks.1,
-                acceleration,
                 inverse_mass: body.inverse_mass(),
                 radius: body.radius(),
                 restitution: body.restitution(),
@@ -184,25 +201,39 @@ impl Solver {
             self.segments.push(segment);
         }
 
+        self.resting_speed = settings.resting_factor * largest_acceleration * dt;
+
         // First impacts of every pair whose swept boxes meet.
         let (mut broad, boxes) = (
             std::mem::take(&mut self.broad),
             std::mem::take(&mut self.boxes),
         );
         broad.rebuild(&boxes);
-        broad.pairs(&boxes, |i, j| self.test_pair(i, j, 0.0, ctx, stats));
+        // Touching pairs that approach no faster than the resting speed are resting contacts,
+        // solved together below; every other pair gets its time of impact.
+        self.resting.clear();
+        broad.pairs(&boxes, |i, j| {
+            if !self.resting_contact(i, j, settings) {
+                self.test_pair(i, j, 0.0, ctx, stats);
+            }
+        });
         (self.broad, self.boxes) = (broad, boxes);
+        if !self.resting.is_empty() {
+            self.solve_resting(bodies, ctx, stats);
+            self.requery_touched(0.0, ctx, stats);
+        }
 
         let budget = settings
             .max_collisions_per_body
             .saturating_mul(dynamic.max(1));
+        let mut events = 0u32;
         // Events closer in time than this are one simultaneous group.
         let simultaneity = settings.tolerance.epsilon() * dt;
         while let Some(Reverse(event)) = self.queue.pop() {
             if !self.is_current(&event) {
                 continue;
             }
-            if stats.collisions >= budget {
+            if events >= budget {
                 stats.collisions_deferred += 1;
                 continue;
             }
@@ -217,55 +248,163 @@ impl Solver {
                     self.group.push(next);
                 }
             }
-            self.touched.clear();
+            self.clear_touched();
             let mut group = std::mem::take(&mut self.group);
             let mut ranges = std::mem::take(&mut self.ranges);
             sort_into_components(&mut group, &mut ranges);
             for range in ranges.iter().cloned() {
                 let component = &group[range];
-                if stats.collisions >= budget {
+                if events >= budget {
                     stats.collisions_deferred += component.len() as u32;
                     continue;
                 }
+                events += component.len() as u32;
                 match component {
                     [single] => self.resolve_event(single, bodies, ctx, stats),
                     _ => self.resolve_group(component, event.time, bodies, ctx, stats),
                 }
                 for e in component.iter() {
-                    for k in [e.a, e.b] {
-                        if !self.segments[k as usize].is_fixed() && !self.touched.contains(&k) {
-                            self.touched.push(k);
-                        }
-                    }
+                    self.touch(e.a);
+                    self.touch(e.b);
                 }
             }
             self.group = group;
             self.ranges = ranges;
-            // Test every pair involving a body just changed, once. (Fixed bodies never change.)
-            for ti in 0..self.touched.len() {
-                let k = self.touched[ti] as usize;
-                self.broad.update(k, &self.boxes[k]);
-            }
-            for ti in 0..self.touched.len() {
-                let k = self.touched[ti] as usize;
-                let mut candidates = std::mem::take(&mut self.candidates);
-                candidates.clear();
-                self.broad
-                    .overlapping(k, &self.boxes, |m| candidates.push(m as u32));
-                for &m in &candidates {
-                    let m = m as usize;
-                    if m < k && self.touched.contains(&(m as u32)) {
-                        continue;
-                    }
-                    self.test_pair(k.min(m), k.max(m), event.time, ctx, stats);
-                }
-                self.candidates = candidates;
-            }
+            self.requery_touched(event.time, ctx, stats);
         }
 
         for (body, segment) in bodies.iter_mut().zip(&self.segments) {
             body.desc.position = segment.position_at(dt);
             body.desc.velocity = segment.velocity + segment.kick_after;
+        }
+    }
+
+    /// Tests every pair involving a body in `touched` (all dynamic, all just changed) once,
+    /// from time `t`, after moving their boxes in the broad phase.
+    fn requery_touched(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            self.broad.update(k, &self.boxes[k]);
+        }
+        let mut candidates = std::mem::take(&mut self.candidates);
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            candidates.clear();
+            self.broad
+                .overlapping(k, &self.boxes, |m| candidates.push(m as u32));
+            for &m in &candidates {
+                let m = m as usize;
+                if m < k && self.is_touched(m) {
+                    continue;
+                }
+                self.test_pair(k.min(m), k.max(m), t, ctx, stats);
+            }
+        }
+        self.candidates = candidates;
+    }
+
+    fn is_touched(&self, m: usize) -> bool {
+        match self.touched_flags.get(m) {
+            Some(flag) => *flag == self.touched_epoch,
+            None => false,
+        }
+    }
+
+    /// Starts a new set of touched bodies.
+    fn clear_touched(&mut self) {
+        self.touched.clear();
+        self.touched_epoch = self.touched_epoch.wrapping_add(1);
+        if self.touched_epoch == 0 {
+            self.touched_flags.iter_mut().for_each(|f| *f = u32::MAX);
+            self.touched_epoch = 1;
+        }
+        if self.touched_flags.len() < self.segments.len() {
+            self.touched_flags.resize(self.segments.len(), u32::MAX);
+        }
+    }
+
+    fn touch(&mut self, k: u32) {
+        if !self.segments[k as usize].is_fixed() && !self.is_touched(k as usize) {
+            self.touched_flags[k as usize] = self.touched_epoch;
+            self.touched.push(k);
+        }
+    }
+
+    /// If `(i, j)` touch (within a millionth of their radii) and approach no faster than the
+    /// resting speed, records them as a resting contact.
+    fn resting_contact(&mut self, i: usize, j: usize, settings: &Settings) -> bool {
+        let (si, sj) = (&self.segments[i], &self.segments[j]);
+        if si.is_fixed() && sj.is_fixed() {
+            return true;
+        }
+        let d = sj.position - si.position;
+        let reach = si.radius + sj.radius;
+        let band = reach * 1e-6 + settings.tolerance.epsilon() * (1.0 + reach);
+        let distance_squared = d.length_squared();
+        if distance_squared > (reach + band) * (reach + band) || distance_squared == 0.0 {
+            return false;
+        }
+        let normal = d / distance_squared.sqrt();
+        let approach = -(sj.velocity - si.velocity).dot(normal);
+        if approach <= 0.0 || approach > self.resting_speed {
+            return false;
+        }
+        self.resting.push(RestingContact {
+            a: i as u32,
+            b: j as u32,
+            normal,
+            impulse: 0.0,
+        });
+        true
+    }
+
+    /// Solves all resting contacts at once (projected Gauss–Seidel, restitution 0), then marks
+    /// the bodies it changed as touched.
+    fn solve_resting(&mut self, bodies: &[Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
+        let threshold = 1e-9 * self.resting_speed;
+        for _ in 0..RESTING_SWEEPS {
+            let mut largest = 0.0f64;
+            for c in self.resting.iter_mut() {
+                let (a, b) = (c.a as usize, c.b as usize);
+                let (ima, imb) = (self.segments[a].inverse_mass, self.segments[b].inverse_mass);
+                let speed = (self.segments[b].velocity - self.segments[a].velocity).dot(c.normal);
+                let next = (c.impulse - speed / (ima + imb)).max(0.0);
+                let change = next - c.impulse;
+                if change != 0.0 {
+                    c.impulse = next;
+                    self.segments[a].velocity -= c.normal * (change * ima);
+                    self.segments[b].velocity += c.normal * (change * imb);
+                    largest = largest.max((change * (ima + imb)).abs());
+                }
+            }
+            if largest <= threshold {
+                break;
+            }
+        }
+        self.clear_touched();
+        let resting = std::mem::take(&mut self.resting);
+        for c in resting.iter().filter(|c| c.impulse > 0.0) {
+            self.touch(c.a);
+            self.touch(c.b);
+            let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
+            stats.collisions += 1;
+            stats.resting_contacts += 1;
+            self.collisions.push(Collision {
+                a: bodies[a].id(),
+                b: bodies[b].id(),
+                time: ctx.start_time,
+                normal: c.normal,
+                point: sa.position + c.normal * sa.radius,
+                impulse: c.impulse,
+                resting: true,
+            });
+        }
+        self.resting = resting;
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            let segment = &mut self.segments[k];
+            segment.version += 1;
+            self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
         }
     }
 
@@ -312,8 +451,7 @@ impl Solver {
             }
             let normal = d / distance;
             let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-            let pressing = (-(sb.acceleration - sa.acceleration).dot(normal)).max(0.0);
-            let resting = approach_speed <= settings.resting_factor * pressing * ctx.dt;
+            let resting = approach_speed <= self.resting_speed;
             self.local_resting.push(resting);
             self.local_contacts.push(GroupContact {
                 a: local(&self.local_bodies, e.a),
@@ -423,8 +561,7 @@ impl Solver {
         let normal = d / distance;
         let settings = ctx.settings;
         let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-        let pressing = (-(sb.acceleration - sa.acceleration).dot(normal)).max(0.0);
-        let resting = approach_speed <= settings.resting_factor * pressing * ctx.dt;
+        let resting = approach_speed <= self.resting_speed;
         let restitution = if resting {
             0.0
         } else {

@@ -1,0 +1,108 @@
+//! Benchmarks of [`sphere_physics`] at scale: the shower and gas scenes at any size, timed
+//! stepping, and (with the `rapier` feature) the same scenes stepped by rapier3d 0.36.
+#![warn(missing_docs)]
+
+#[cfg(feature = "rapier")]
+pub mod rapier_peer;
+pub mod scenes;
+
+use std::time::Instant;
+
+use sphere_physics::{SceneDesc, World};
+
+/// What one engine did on one scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurement {
+    /// Bodies stepped (fixed ones included).
+    pub bodies: usize,
+    /// Steps timed.
+    pub steps: u32,
+    /// Wall seconds spent stepping.
+    pub seconds: f64,
+    /// Kinetic energy before the first step.
+    pub kinetic_before: f64,
+    /// Kinetic energy after the last.
+    pub kinetic_after: f64,
+    /// Collisions resolved (0 when the engine does not count them).
+    pub collisions: u64,
+    /// Largest overlap left after the last step (our engine only).
+    pub max_overlap: Option<f64>,
+}
+
+impl Measurement {
+    /// Nanoseconds per body per step.
+    pub fn ns_per_body_step(&self) -> f64 {
+        self.seconds * 1e9 / (self.bodies as f64 * f64::from(self.steps))
+    }
+
+    /// Steps per second.
+    pub fn steps_per_second(&self) -> f64 {
+        f64::from(self.steps) / self.seconds
+    }
+}
+
+/// Steps `scene` with our engine, `steps` steps of `dt`, timing only the steps.
+pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64) -> Measurement {
+    let mut world: World = scene.build().expect("bench scenes are valid");
+    let kinetic_before = world.kinetic_energy();
+    let mut collisions = 0u64;
+    let mut seconds = 0.0;
+    for _ in 0..steps {
+        let started = Instant::now();
+        let stats = world.step(dt).expect("dt is valid");
+        seconds += started.elapsed().as_secs_f64();
+        collisions += u64::from(stats.collisions);
+    }
+    Measurement {
+        bodies: world.len(),
+        steps,
+        seconds,
+        kinetic_before,
+        kinetic_after: world.kinetic_energy(),
+        collisions,
+        max_overlap: Some(world.max_overlap()),
+    }
+}
+
+/// Steps `scene` with rapier3d 0.36, `steps` steps of `dt`, CCD on or off, single-threaded,
+/// `length_unit` set to the small spheres' diameter as rapier's docs advise.
+#[cfg(feature = "rapier")]
+pub fn measure_rapier(scene: &SceneDesc, steps: u32, dt: f64, ccd: bool) -> Measurement {
+    use rapier_peer::{RapierConfig, RapierSphere, RapierWorld};
+    let spheres: Vec<RapierSphere> = scene
+        .sphere_descs()
+        .expect("bench scenes are valid")
+        .into_iter()
+        .map(|d| RapierSphere {
+            position: d.position.to_array(),
+            velocity: d.velocity.to_array(),
+            radius: d.radius,
+            density: d.density,
+            restitution: d.restitution,
+            fixed: d.fixed,
+        })
+        .collect();
+    let config = RapierConfig {
+        gravity: scene.gravity,
+        dt,
+        ccd,
+        length_unit: 2.0 * scenes::RADIUS,
+        solver_iterations: 4,
+    };
+    let mut world = RapierWorld::new(&spheres, &config);
+    let kinetic_before = world.kinetic_energy();
+    let started = Instant::now();
+    for _ in 0..steps {
+        world.step();
+    }
+    let seconds = started.elapsed().as_secs_f64();
+    Measurement {
+        bodies: world.len(),
+        steps,
+        seconds,
+        kinetic_before,
+        kinetic_after: world.kinetic_energy(),
+        collisions: 0,
+        max_overlap: None,
+    }
+}

@@ -1,0 +1,132 @@
+//! `sphere-bench`: steps per second and ns per sphere per step on the shower and the gas at
+//! several sizes, ours against rapier3d 0.36 (with `--features rapier`), as a markdown table.
+//!
+//!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
+//!         [--steps 60] [--scenes shower,gas]
+
+use std::io::Write;
+
+use sphere_bench::{Measurement, measure_ours, scenes};
+
+const DT: f64 = 1.0 / 60.0;
+
+struct Options {
+    sizes: Vec<u32>,
+    steps: u32,
+    scenes: Vec<String>,
+}
+
+fn parse() -> Result<Options, String> {
+    let mut options = Options {
+        sizes: vec![1_000, 10_000, 100_000],
+        steps: 60,
+        scenes: vec!["shower".into(), "gas".into()],
+    };
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut it = args.iter();
+    while let Some(flag) = it.next() {
+        let mut value = || it.next().ok_or(format!("{flag} needs a value"));
+        match flag.as_str() {
+            "--sizes" => {
+                options.sizes = value()?
+                    .split(',')
+                    .map(|s| s.parse().map_err(|_| format!("bad size '{s}'")))
+                    .collect::<Result<_, _>>()?
+            }
+            "--steps" => {
+                options.steps = value()?
+                    .parse()
+                    .ok()
+                    .filter(|&s| s > 0)
+                    .ok_or("--steps needs a positive integer")?
+            }
+            "--scenes" => {
+                options.scenes = value()?.split(',').map(str::to_owned).collect();
+                if let Some(bad) = options
+                    .scenes
+                    .iter()
+                    .find(|s| *s != "shower" && *s != "gas")
+                {
+                    return Err(format!("unknown scene '{bad}' (shower, gas)"));
+                }
+            }
+            "--help" | "-h" => {
+                println!(
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas]"
+                );
+                std::process::exit(0);
+            }
+            other => return Err(format!("unknown flag '{other}'")),
+        }
+    }
+    Ok(options)
+}
+
+fn cell(m: &Measurement) -> String {
+    format!(
+        "{:.0} ns ({:.1} steps/s)",
+        m.ns_per_body_step(),
+        m.steps_per_second()
+    )
+}
+
+fn main() {
+    let options = match parse() {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("sphere-bench: error: {e}");
+            std::process::exit(2);
+        }
+    };
+    let rapier = cfg!(feature = "rapier");
+    println!(
+        "{} steps of 1/60 s per run, single-threaded. Cost is wall time per sphere per step.\n",
+        options.steps
+    );
+    if rapier {
+        println!(
+            "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before | rapier KE after/before |"
+        );
+        println!("|---|---|---|---|---|---|---|---|---|");
+    } else {
+        println!("| scene | N | ours (exact) | collisions/step | KE after/before | overlap left |");
+        println!("|---|---|---|---|---|---|");
+    }
+    for scene_name in &options.scenes {
+        for &n in &options.sizes {
+            let scene = if scene_name == "shower" {
+                scenes::shower(n, 1)
+            } else {
+                scenes::gas(n, 1)
+            };
+            let ours = measure_ours(&scene, options.steps, DT);
+            let ke = |m: &Measurement| m.kinetic_after / m.kinetic_before;
+            #[cfg(feature = "rapier")]
+            {
+                let ccd = sphere_bench::measure_rapier(&scene, options.steps, DT, true);
+                let plain = sphere_bench::measure_rapier(&scene, options.steps, DT, false);
+                println!(
+                    "| {scene_name} | {n} | {} | {} | {} | {:.1}x | {:.1}x | {:.4} | {:.4} / {:.4} |",
+                    cell(&ours),
+                    cell(&ccd),
+                    cell(&plain),
+                    ccd.seconds / ours.seconds,
+                    plain.seconds / ours.seconds,
+                    ke(&ours),
+                    ke(&ccd),
+                    ke(&plain),
+                );
+            }
+            if !rapier {
+                println!(
+                    "| {scene_name} | {n} | {} | {:.0} | {:.4} | {:.2e} |",
+                    cell(&ours),
+                    ours.collisions as f64 / f64::from(options.steps),
+                    ke(&ours),
+                    ours.max_overlap.unwrap_or(0.0),
+                );
+            }
+            let _ = std::io::stdout().flush();
+        }
+    }
+}

@@ -1,0 +1,197 @@
+//! The peer: the same sphere scene stepped by rapier3d 0.36 (ball colliders, no friction,
+//! restitution combined with `Min`, rotations locked).
+//!
+//! Rapier works in `f32` (`rapier3d::math::Real`) with glam vectors (`rapier3d::math::Vector`);
+//! this module converts from and to the `f64` arrays the benchmark uses.
+
+use rapier3d::prelude::{
+    BroadPhaseBvh, CCDSolver, CoefficientCombineRule, ColliderBuilder, ColliderSet,
+    ImpulseJointSet, IntegrationParameters, IslandManager, MultibodyJointSet, NarrowPhase,
+    PhysicsPipeline, Real, RigidBodyBuilder, RigidBodyHandle, RigidBodySet, SoftBodySet, Vector,
+};
+
+/// One sphere of the scene, as handed to rapier.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RapierSphere {
+    /// Initial centre position.
+    pub position: [f64; 3],
+    /// Initial linear velocity.
+    pub velocity: [f64; 3],
+    /// Ball radius.
+    pub radius: f64,
+    /// Density; rapier derives the mass from it and the ball volume.
+    pub density: f64,
+    /// Coefficient of restitution, combined with the other collider's by `Min`.
+    pub restitution: f64,
+    /// `true` for a fixed (immovable) body, `false` for a dynamic one.
+    pub fixed: bool,
+}
+
+/// World-wide settings for the rapier peer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RapierConfig {
+    /// Gravity applied to every dynamic body.
+    pub gravity: [f64; 3],
+    /// Time step of one [`RapierWorld::step`].
+    pub dt: f64,
+    /// Enable CCD on every dynamic body.
+    pub ccd: bool,
+    /// Rapier's `IntegrationParameters::length_unit`: the typical object size.
+    pub length_unit: f64,
+    /// Rapier's `IntegrationParameters::num_solver_iterations` (values below 1 are raised to 1).
+    pub solver_iterations: usize,
+}
+
+/// A rapier3d world holding the sphere scene, with everything `PhysicsPipeline::step` needs.
+pub struct RapierWorld {
+    /// Gravity passed to each step.
+    pub gravity: Vector,
+    /// Integration parameters (time step, length unit, solver iterations).
+    pub integration_parameters: IntegrationParameters,
+    /// The physics pipeline (workspace buffers).
+    pub physics_pipeline: PhysicsPipeline,
+    /// Island (sleep/activation) manager.
+    pub islands: IslandManager,
+    /// Broad phase.
+    pub broad_phase: BroadPhaseBvh,
+    /// Narrow phase.
+    pub narrow_phase: NarrowPhase,
+    /// All rigid bodies, one per sphere.
+    pub bodies: RigidBodySet,
+    /// All colliders, one ball per sphere.
+    pub colliders: ColliderSet,
+    /// Impulse joints (always empty).
+    pub impulse_joints: ImpulseJointSet,
+    /// Multibody joints (always empty).
+    pub multibody_joints: MultibodyJointSet,
+    /// Soft bodies (always empty; required by `PhysicsPipeline::step` in 0.36).
+    pub soft_bodies: SoftBodySet,
+    /// Continuous collision detection solver.
+    pub ccd_solver: CCDSolver,
+    /// Rigid-body handles in input order.
+    pub handles: Vec<RigidBodyHandle>,
+}
+
+/// Converts an `f64` triple to a rapier vector.
+fn to_vector(v: [f64; 3]) -> Vector {
+    Vector::new(v[0] as Real, v[1] as Real, v[2] as Real)
+}
+
+/// Converts a rapier vector to an `f64` triple.
+fn from_vector(v: Vector) -> [f64; 3] {
+    [f64::from(v.x), f64::from(v.y), f64::from(v.z)]
+}
+
+impl RapierWorld {
+    /// Builds the world: one rigid body with one ball collider per sphere, in input order.
+    pub fn new(spheres: &[RapierSphere], config: &RapierConfig) -> Self {
+        let mut bodies = RigidBodySet::new();
+        let mut colliders = ColliderSet::new();
+        let mut handles = Vec::with_capacity(spheres.len());
+
+        for sphere in spheres {
+            let builder = if sphere.fixed {
+                RigidBodyBuilder::fixed()
+            } else {
+                RigidBodyBuilder::dynamic().ccd_enabled(config.ccd)
+            };
+            let body = builder
+                .translation(to_vector(sphere.position))
+                .linvel(to_vector(sphere.velocity))
+                .lock_rotations()
+                .build();
+            let handle = bodies.insert(body);
+
+            let collider = ColliderBuilder::ball(sphere.radius as Real)
+                .density(sphere.density as Real)
+                .restitution(sphere.restitution as Real)
+                .restitution_combine_rule(CoefficientCombineRule::Min)
+                .friction(0.0)
+                .friction_combine_rule(CoefficientCombineRule::Min)
+                .build();
+            colliders.insert_with_parent(collider, handle, &mut bodies);
+            handles.push(handle);
+        }
+
+        let integration_parameters = IntegrationParameters {
+            dt: config.dt as Real,
+            length_unit: config.length_unit as Real,
+            num_solver_iterations: config.solver_iterations.max(1),
+            ..IntegrationParameters::default()
+        };
+
+        Self {
+            gravity: to_vector(config.gravity),
+            integration_parameters,
+            physics_pipeline: PhysicsPipeline::new(),
+            islands: IslandManager::new(),
+            broad_phase: BroadPhaseBvh::new(),
+            narrow_phase: NarrowPhase::new(),
+            bodies,
+            colliders,
+            impulse_joints: ImpulseJointSet::new(),
+            multibody_joints: MultibodyJointSet::new(),
+            soft_bodies: SoftBodySet::new(),
+            ccd_solver: CCDSolver::new(),
+            handles,
+        }
+    }
+
+    /// Advances the simulation by one `config.dt`, with no hooks and no event handler.
+    pub fn step(&mut self) {
+        self.physics_pipeline.step(
+            self.gravity,
+            &self.integration_parameters,
+            &mut self.islands,
+            &mut self.broad_phase,
+            &mut self.narrow_phase,
+            &mut self.bodies,
+            &mut self.colliders,
+            &mut self.impulse_joints,
+            &mut self.multibody_joints,
+            &mut self.soft_bodies,
+            &mut self.ccd_solver,
+            &(),
+            &(),
+        );
+    }
+
+    /// Number of spheres.
+    pub fn len(&self) -> usize {
+        self.handles.len()
+    }
+
+    /// Whether the world holds no sphere.
+    pub fn is_empty(&self) -> bool {
+        self.handles.is_empty()
+    }
+
+    /// Sphere centres, in input order.
+    pub fn positions(&self) -> Vec<[f64; 3]> {
+        self.handles
+            .iter()
+            .map(|&h| from_vector(self.bodies[h].translation()))
+            .collect()
+    }
+
+    /// Sphere linear velocities, in input order.
+    pub fn velocities(&self) -> Vec<[f64; 3]> {
+        self.handles
+            .iter()
+            .map(|&h| from_vector(self.bodies[h].linvel()))
+            .collect()
+    }
+
+    /// Translational kinetic energy `Σ ½ m v²` of the dynamic bodies, with rapier's masses.
+    pub fn kinetic_energy(&self) -> f64 {
+        self.handles
+            .iter()
+            .map(|&h| &self.bodies[h])
+            .filter(|body| body.is_dynamic())
+            .map(|body| {
+                let [vx, vy, vz] = from_vector(body.linvel());
+                0.5 * f64::from(body.mass()) * (vx * vx + vy * vy + vz * vz)
+            })
+            .sum()
+    }
+}

@@ -1,0 +1,46 @@
+//! The benchmark scenes, sized by sphere count: a shower onto a fixed dome, and a gas in a box.
+
+use sphere_physics::SceneDesc;
+
+/// Radius of the small spheres in both scenes.
+pub const RADIUS: f64 = 0.05;
+
+/// Side of a lattice cube holding `capacity` cells of the generators' spacing.
+fn side_for(capacity: f64) -> f64 {
+    let cell = 2.0 * RADIUS * 1.1;
+    cell * capacity.cbrt().ceil()
+}
+
+/// `n` spheres of radius 0.05 (restitution 0.5) raining from a cube with one lattice cell in
+/// eight filled, just above a fixed dome wider than the cube, under gravity: the first reach
+/// the dome in about 0.2 s and the rest keep landing on it, bouncing off one another and
+/// sliding off its (frictionless) sides for the rest of the run.
+pub fn shower(n: u32, seed: u64) -> SceneDesc {
+    let side = side_for(8.0 * f64::from(n));
+    let dome = 0.75 * side;
+    let bottom = dome + 0.2;
+    SceneDesc::from_ron(&format!(
+        "(name: \"shower {n}\", gravity: (0.0, -9.81, 0.0), restitution: 0.5,
+          spheres: [(name: \"dome\", position: (0.0, 0.0, 0.0), radius: {dome:?}, fixed: true)],
+          generate: [Shower(count: {n}, seed: {seed}, min: ({lo:?}, {bottom:?}, {lo:?}),
+                            max: ({hi:?}, {top:?}, {hi:?}), radius: {RADIUS:?})])",
+        lo = -side / 2.0,
+        hi = side / 2.0,
+        top = bottom + side,
+    ))
+    .expect("the shower scene is valid")
+}
+
+/// `n` spheres of radius 0.05 at speed 1 in random directions, a quarter of the lattice filled,
+/// in a box closed by six fixed wall spheres; elastic, no gravity.
+pub fn gas(n: u32, seed: u64) -> SceneDesc {
+    let side = side_for(4.0 * f64::from(n));
+    SceneDesc::from_ron(&format!(
+        "(name: \"gas {n}\", gravity: (0.0, 0.0, 0.0), restitution: 1.0,
+          generate: [Gas(count: {n}, seed: {seed}, min: ({lo:?}, {lo:?}, {lo:?}),
+                         max: ({hi:?}, {hi:?}, {hi:?}), radius: {RADIUS:?}, speed: 1.0)])",
+        lo = -side / 2.0,
+        hi = side / 2.0,
+    ))
+    .expect("the gas scene is valid")
+}

@@ -1,15 +1,19 @@
 //! Broad phase: which bodies' boxes may overlap, in O(1) per body.
 //!
-//! A hierarchical hash grid. Level `L` has cells of side `base · 2^L`; each body lives at the
-//! lowest level whose cells are at least as large as its box, in the one cell that holds its
-//! box's lower corner. A body whose box overlaps a query box therefore has its lower corner in
+//! A hierarchical grid. Level `L` has cells of side `base · 2^L`; each body lives at the lowest
+//! level whose cells are at least as large as its box, in the one cell that holds its box's lower
+//! corner. A body whose box overlaps a query box therefore has its lower corner in
 //! `[query.lo − cell, query.hi]` at its level: at most 3 cells per axis to visit. The base cell
-//! is the median box size, so a shower of small spheres sits on level 0 and a huge fixed sphere
-//! (a dome, a wall) sits alone on a high level, where small bodies find it in a few cells.
+//! is the size of a typical box, so a shower of small spheres sits on level 0 and a huge fixed
+//! sphere (a dome, a wall) sits alone on a high level, where small bodies find it in a few cells.
 //!
-//! Cells are hashed into buckets holding intrusive doubly linked lists, so moving one body after a
-//! collision is O(1), and nothing allocates once the buffers have grown to the scene. Scenes of
-//! a few bodies skip the grid: all pairs are cheaper.
+//! At the start of a step the bodies are counting-sorted by cell into flat arrays. Level-0
+//! cells map to buckets by their coordinates modulo a power of two, so neighbouring cells are
+//! neighbours in memory and a sweep over the bodies in sorted order reads memory almost in order.
+//! Each pair of neighbouring cells is visited once (a cell and its 13 "forward" neighbours).
+//! A body whose box leaves its cell during the step (after a collision) moves to a small
+//! overlay grid of linked lists, where moving again is O(1). Nothing allocates once the
+//! buffers have grown to the scene. Scenes of a few bodies skip the grid: all pairs are cheaper.
 
 use glam::DVec3;
 
@@ -30,6 +34,7 @@ impl Aabb {
         }
     }
 
+    #[inline]
     pub fn overlaps(&self, other: &Aabb) -> bool {
         self.lo.cmple(other.hi).all() && other.lo.cmple(self.hi).all()
     }
@@ -41,66 +46,77 @@ impl Aabb {
 
 const NONE: u32 = u32::MAX;
 
-/// A cell itself, then the 13 neighbours that follow it in (x, y, z) order: each unordered pair
-/// of neighbouring cells appears once among "cell and its forward neighbours".
-const FORWARD: [(i64, i64, i64); 14] = [
-    (0, 0, 0),
-    (0, 0, 1),
-    (0, 1, -1),
-    (0, 1, 0),
-    (0, 1, 1),
-    (1, -1, -1),
-    (1, -1, 0),
-    (1, -1, 1),
-    (1, 0, -1),
-    (1, 0, 0),
-    (1, 0, 1),
-    (1, 1, -1),
-    (1, 1, 0),
-    (1, 1, 1),
-];
+/// A level no body is on: marks sorted entries of bodies that moved to the overlay.
+const GONE: u32 = u32::MAX;
 
 /// Below this many bodies, all pairs are tested directly.
 const SMALL_SCENE: usize = 24;
 
-/// Levels above the base: cells up to `base · 2^40`.
-const MAX_LEVEL: u32 = 40;
+/// Levels: cells from `base` to `base · 2^40`.
+const LEVELS: usize = 41;
+
+/// A cell itself, then the 13 neighbours that follow it in (z, y, x) order: each unordered pair
+/// of neighbouring cells appears once among "a cell and its forward neighbours".
+const FORWARD: [(i32, i32, i32); 14] = [
+    (0, 0, 0),
+    (1, 0, 0),
+    (-1, 1, 0),
+    (0, 1, 0),
+    (1, 1, 0),
+    (-1, -1, 1),
+    (0, -1, 1),
+    (1, -1, 1),
+    (-1, 0, 1),
+    (0, 0, 1),
+    (1, 0, 1),
+    (-1, 1, 1),
+    (0, 1, 1),
+    (1, 1, 1),
+];
 
 /// Where a body sits in the grid.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 struct CellKey {
     level: u32,
-    x: i64,
-    y: i64,
-    z: i64,
+    x: i32,
+    y: i32,
+    z: i32,
 }
 
-impl CellKey {
-    fn bucket(&self, mask: usize) -> usize {
-        let mut h = (self.x as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        h ^= (self.y as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
-        h ^= (self.z as u64).wrapping_mul(0x1656_67B1_9E37_79F9);
-        h ^= u64::from(self.level).wrapping_mul(0x27D4_EB2F_1656_67C5);
-        h ^= h >> 29;
-        (h as usize) & mask
-    }
+/// `floor(v)` as an integer, saturating far outside any scene.
+#[inline]
+fn floor_i32(v: f64) -> i32 {
+    let v = v.clamp(-1.0e9, 1.0e9);
+    let t = v as i32;
+    t - i32::from(v < f64::from(t))
 }
 
-/// The hierarchical hash grid (see the module docs). Keeps its buffers between steps.
+/// The hierarchical grid (see the module docs). Keeps its buffers between steps.
 #[derive(Debug, Default)]
 pub(crate) struct BroadPhase {
     /// All pairs directly (small scenes).
     brute: bool,
-    base: f64,
-    inverse_cells: Vec<f64>,
     cells: Vec<f64>,
+    inverse_cells: Vec<f64>,
+    /// Level-0 buckets are `2^bits` per axis.
+    bits: u32,
     mask: usize,
-    heads: Vec<u32>,
+    /// Every body's current cell.
+    keys: Vec<CellKey>,
+    /// Bodies per level (sorted and overlay).
+    level_counts: Vec<u32>,
+    /// The sorted arrays: bucket `b` holds sorted positions `start[b]..start[b + 1]`.
+    start: Vec<u32>,
+    order: Vec<u32>,
+    sorted_keys: Vec<CellKey>,
+    sorted_boxes: Vec<Aabb>,
+    sorted_position: Vec<u32>,
+    /// The overlay: bodies that left their sorted cell, in bucket lists.
+    in_overlay: Vec<bool>,
+    overlay_heads: Vec<u32>,
     next: Vec<u32>,
     prev: Vec<u32>,
-    keys: Vec<CellKey>,
-    /// Bodies per level, to know which levels to visit.
-    level_counts: Vec<u32>,
+    overlay_level_counts: Vec<u32>,
     scratch: Vec<f64>,
 }
 
@@ -112,6 +128,67 @@ impl BroadPhase {
         if self.brute {
             return;
         }
+        self.choose_cells(boxes);
+        // Buckets: a power of two per axis, at least 2n in all.
+        self.bits = 1;
+        while (1usize << (3 * self.bits)) < 2 * n {
+            self.bits += 1;
+        }
+        let buckets = 1usize << (3 * self.bits);
+        self.mask = buckets - 1;
+
+        self.keys.clear();
+        self.level_counts.clear();
+        self.level_counts.resize(LEVELS, 0);
+        self.overlay_level_counts.clear();
+        self.overlay_level_counts.resize(LEVELS, 0);
+        self.start.clear();
+        self.start.resize(buckets + 1, 0);
+        for b in boxes {
+            let key = self.key_of(b);
+            self.level_counts[key.level as usize] += 1;
+            let bucket = self.bucket(&key);
+            self.start[bucket + 1] += 1;
+            self.keys.push(key);
+        }
+        for b in 0..buckets {
+            self.start[b + 1] += self.start[b];
+        }
+        self.order.clear();
+        self.order.resize(n, 0);
+        self.sorted_keys.clear();
+        self.sorted_keys.resize(n, CellKey::default());
+        self.sorted_boxes.clear();
+        self.sorted_boxes.resize(n, Aabb::default());
+        self.sorted_position.clear();
+        self.sorted_position.resize(n, 0);
+        // Place bodies; `start[b]` ends as the end of bucket b - 1's range, so shift back after.
+        for (i, key) in self.keys.iter().enumerate() {
+            let b = self.bucket(key);
+            let p = self.start[b] as usize;
+            self.start[b] += 1;
+            self.order[p] = i as u32;
+            self.sorted_keys[p] = *key;
+            self.sorted_boxes[p] = boxes[i];
+            self.sorted_position[i] = p as u32;
+        }
+        for b in (1..=buckets).rev() {
+            self.start[b] = self.start[b - 1];
+        }
+        self.start[0] = 0;
+
+        self.in_overlay.clear();
+        self.in_overlay.resize(n, false);
+        self.overlay_heads.clear();
+        self.overlay_heads.resize(buckets, NONE);
+        self.next.clear();
+        self.next.resize(n, NONE);
+        self.prev.clear();
+        self.prev.resize(n, NONE);
+    }
+
+    /// The base cell: the largest typical box (up to twice the median size).
+    fn choose_cells(&mut self, boxes: &[Aabb]) {
         self.scratch.clear();
         self.scratch
             .extend(boxes.iter().map(Aabb::extent).filter(|e| e.is_finite()));
@@ -119,93 +196,66 @@ impl BroadPhase {
         let median = if self.scratch.is_empty() {
             1.0
         } else {
-            *self
-                .scratch
-                .select_nth_unstable_by(middle, f64::total_cmp)
-                .1
+            *self.scratch.select_nth_unstable_by(middle, f64::total_cmp).1
         };
-        // The base cell holds every typical body (up to twice the median size) on level 0.
         let typical = self
             .scratch
             .iter()
             .copied()
             .filter(|&e| e <= 2.0 * median)
             .fold(0.0f64, f64::max);
-        self.base = if typical > 0.0 { typical } else { 1.0 };
+        let base = if typical > 0.0 { typical } else { 1.0 };
         self.cells.clear();
         self.inverse_cells.clear();
-        for level in 0..=MAX_LEVEL {
-            let cell = self.base * 2f64.powi(level as i32);
+        for level in 0..LEVELS {
+            let cell = base * 2f64.powi(level as i32);
             self.cells.push(cell);
             self.inverse_cells.push(1.0 / cell);
         }
-        let buckets = (2 * n).next_power_of_two();
-        self.mask = buckets - 1;
-        self.heads.clear();
-        self.heads.resize(buckets, NONE);
-        self.next.clear();
-        self.next.resize(n, NONE);
-        self.prev.clear();
-        self.prev.resize(n, NONE);
-        self.keys.clear();
-        self.keys.resize(n, CellKey::default());
-        self.level_counts.clear();
-        self.level_counts.resize(MAX_LEVEL as usize + 1, 0);
-        for (i, b) in boxes.iter().enumerate() {
-            self.insert(i as u32, b);
+    }
+
+    #[inline]
+    fn bucket(&self, key: &CellKey) -> usize {
+        if key.level == 0 {
+            let m = (1usize << self.bits) - 1;
+            (key.x as usize & m)
+                | ((key.y as usize & m) << self.bits)
+                | ((key.z as usize & m) << (2 * self.bits))
+        } else {
+            let mut h = (key.x as u32 as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+            h ^= (key.y as u32 as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+            h ^= (key.z as u32 as u64).wrapping_mul(0x1656_67B1_9E37_79F9);
+            h ^= u64::from(key.level).wrapping_mul(0x27D4_EB2F_1656_67C5);
+            h ^= h >> 29;
+            (h as usize) & self.mask
         }
     }
 
     fn level_for(&self, b: &Aabb) -> u32 {
         let extent = b.extent();
-        if extent.is_nan() || extent > self.cells[MAX_LEVEL as usize] {
-            return MAX_LEVEL;
+        if extent.is_nan() || extent > self.cells[LEVELS - 1] {
+            return (LEVELS - 1) as u32;
         }
         let mut level = 0;
-        while self.cells[level as usize] < extent {
+        while self.cells[level] < extent {
             level += 1;
         }
-        level
+        level as u32
     }
 
-    fn key(&self, level: u32, point: DVec3) -> CellKey {
+    #[inline]
+    fn key_at(&self, level: u32, point: DVec3) -> CellKey {
         let inverse = self.inverse_cells[level as usize];
-        let c = |v: f64| (v * inverse).floor().clamp(-1e15, 1e15) as i64;
         CellKey {
             level,
-            x: c(point.x),
-            y: c(point.y),
-            z: c(point.z),
+            x: floor_i32(point.x * inverse),
+            y: floor_i32(point.y * inverse),
+            z: floor_i32(point.z * inverse),
         }
     }
 
-    fn insert(&mut self, i: u32, b: &Aabb) {
-        let level = self.level_for(b);
-        let key = self.key(level, b.lo);
-        let bucket = key.bucket(self.mask);
-        let head = self.heads[bucket];
-        self.keys[i as usize] = key;
-        self.prev[i as usize] = NONE;
-        self.next[i as usize] = head;
-        if head != NONE {
-            self.prev[head as usize] = i;
-        }
-        self.heads[bucket] = i;
-        self.level_counts[level as usize] += 1;
-    }
-
-    fn remove(&mut self, i: u32) {
-        let key = self.keys[i as usize];
-        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
-        if p == NONE {
-            self.heads[key.bucket(self.mask)] = n;
-        } else {
-            self.next[p as usize] = n;
-        }
-        if n != NONE {
-            self.prev[n as usize] = p;
-        }
-        self.level_counts[key.level as usize] -= 1;
+    fn key_of(&self, b: &Aabb) -> CellKey {
+        self.key_at(self.level_for(b), b.lo)
     }
 
     /// Body `i`'s box is now `b`.
@@ -213,38 +263,102 @@ impl BroadPhase {
         if self.brute {
             return;
         }
-        let level = self.level_for(b);
-        if self.keys[i] == self.key(level, b.lo) {
-            return;
+        let key = self.key_of(b);
+        if !self.in_overlay[i] {
+            let p = self.sorted_position[i] as usize;
+            if key == self.keys[i] {
+                self.sorted_boxes[p] = *b;
+                return;
+            }
+            // Leave the sorted arrays for the overlay.
+            self.sorted_keys[p].level = GONE;
+            self.in_overlay[i] = true;
+        } else {
+            if key == self.keys[i] {
+                return;
+            }
+            self.overlay_remove(i as u32);
         }
-        self.remove(i as u32);
-        self.insert(i as u32, b);
+        self.level_counts[self.keys[i].level as usize] -= 1;
+        self.keys[i] = key;
+        self.level_counts[key.level as usize] += 1;
+        self.overlay_insert(i as u32);
     }
 
-    /// Calls `f(j)` for every body `j` at a level in `levels` whose box may overlap `q`
-    /// (each once; the caller tests the boxes).
-    fn visit(&self, q: &Aabb, levels: std::ops::RangeInclusive<u32>, f: &mut impl FnMut(usize)) {
+    fn overlay_insert(&mut self, i: u32) {
+        let key = self.keys[i as usize];
+        let bucket = self.bucket(&key);
+        let head = self.overlay_heads[bucket];
+        self.prev[i as usize] = NONE;
+        self.next[i as usize] = head;
+        if head != NONE {
+            self.prev[head as usize] = i;
+        }
+        self.overlay_heads[bucket] = i;
+        self.overlay_level_counts[key.level as usize] += 1;
+    }
+
+    fn overlay_remove(&mut self, i: u32) {
+        let key = self.keys[i as usize];
+        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
+        if p == NONE {
+            let bucket = self.bucket(&key);
+            self.overlay_heads[bucket] = n;
+        } else {
+            self.next[p as usize] = n;
+        }
+        if n != NONE {
+            self.prev[n as usize] = p;
+        }
+        self.overlay_level_counts[key.level as usize] -= 1;
+    }
+
+    /// Calls `f(j)` for every body in `cell` (sorted and overlay), each once.
+    #[inline]
+    fn walk(&self, cell: CellKey, f: &mut impl FnMut(usize)) {
+        let b = self.bucket(&cell);
+        for p in self.start[b] as usize..self.start[b + 1] as usize {
+            if self.sorted_keys[p] == cell {
+                f(self.order[p] as usize);
+            }
+        }
+        if self.overlay_level_counts[cell.level as usize] > 0 {
+            let mut j = self.overlay_heads[b];
+            while j != NONE {
+                if self.keys[j as usize] == cell {
+                    f(j as usize);
+                }
+                j = self.next[j as usize];
+            }
+        }
+    }
+
+    /// Calls `f(j)` for every body `j` at a level in `levels` whose box may overlap `q`.
+    fn visit(&self, q: &Aabb, levels: std::ops::Range<usize>, f: &mut impl FnMut(usize)) {
         for level in levels {
-            if self.level_counts[level as usize] == 0 {
+            let count = self.level_counts[level];
+            if count == 0 {
                 continue;
             }
-            let cell = self.cells[level as usize];
-            let lo = self.key(level, q.lo - DVec3::splat(cell));
-            let hi = self.key(level, q.hi);
-            let count =
-                (hi.x - lo.x + 1) as f64 * (hi.y - lo.y + 1) as f64 * (hi.z - lo.z + 1) as f64;
-            if count > self.level_counts[level as usize] as f64 + 27.0 {
+            let cell = self.cells[level];
+            let lo = self.key_at(level as u32, q.lo - DVec3::splat(cell));
+            let hi = self.key_at(level as u32, q.hi);
+            let cells = (f64::from(hi.x) - f64::from(lo.x) + 1.0)
+                * (f64::from(hi.y) - f64::from(lo.y) + 1.0)
+                * (f64::from(hi.z) - f64::from(lo.z) + 1.0);
+            if cells > f64::from(count) + 27.0 {
                 // A big box over a fine level: scanning the level's bodies is cheaper.
                 for (j, key) in self.keys.iter().enumerate() {
-                    if key.level == level {
+                    if key.level as usize == level {
                         f(j);
                     }
                 }
                 continue;
             }
-            for x in lo.x..=hi.x {
+            for z in lo.z..=hi.z {
                 for y in lo.y..=hi.y {
-                    for z in lo.z..=hi.z {
+                    for x in lo.x..=hi.x {
+                        let level = level as u32;
                         self.walk(CellKey { level, x, y, z }, f);
                     }
                 }
@@ -253,6 +367,7 @@ impl BroadPhase {
     }
 
     /// Calls `f(i, j)` with `i < j` for every pair of overlapping boxes, each pair once.
+    /// Call right after [`BroadPhase::rebuild`] with the same boxes.
     pub fn pairs(&self, boxes: &[Aabb], mut f: impl FnMut(usize, usize)) {
         if self.brute {
             for i in 0..boxes.len() {
@@ -264,27 +379,36 @@ impl BroadPhase {
             }
             return;
         }
-        // A pair on one level is reported once, from the cell pair's "forward" side: the body
-        // visits its own cell (partners of higher index) and the 13 cells after it. A pair
-        // across levels is reported by the body on the lower level.
-        for (i, bi) in boxes.iter().enumerate() {
-            let key = self.keys[i];
-            for (n, (dx, dy, dz)) in FORWARD.iter().enumerate() {
+        // In sorted order, so memory is read nearly in order. A pair on one level is reported
+        // from the forward side of its pair of cells (in one cell: from the earlier entry); a
+        // pair across levels by the body on the lower level.
+        let highest = self
+            .level_counts
+            .iter()
+            .rposition(|&c| c > 0)
+            .unwrap_or(0);
+        for (p, (key, bp)) in self.sorted_keys.iter().zip(&self.sorted_boxes).enumerate() {
+            let i = self.order[p] as usize;
+            for (n, &(dx, dy, dz)) in FORWARD.iter().enumerate() {
                 let cell = CellKey {
                     level: key.level,
-                    x: key.x + dx,
-                    y: key.y + dy,
-                    z: key.z + dz,
+                    x: key.x.wrapping_add(dx),
+                    y: key.y.wrapping_add(dy),
+                    z: key.z.wrapping_add(dz),
                 };
-                self.walk(cell, &mut |j| {
-                    if (n > 0 || j > i) && bi.overlaps(&boxes[j]) {
+                let b = self.bucket(&cell);
+                let from = if n == 0 { p + 1 } else { self.start[b] as usize };
+                for q in from..self.start[b + 1] as usize {
+                    if self.sorted_keys[q] == cell && bp.overlaps(&self.sorted_boxes[q]) {
+                        let j = self.order[q] as usize;
                         f(i.min(j), i.max(j));
                     }
-                });
+                }
             }
-            if key.level < MAX_LEVEL {
-                self.visit(bi, key.level + 1..=MAX_LEVEL, &mut |j| {
-                    if bi.overlaps(&boxes[j]) {
+            let level = key.level as usize;
+            if level < highest {
+                self.visit(bp, level + 1..highest + 1, &mut |j| {
+                    if bp.overlaps(&boxes[j]) {
                         f(i.min(j), i.max(j));
                     }
                 });
@@ -292,18 +416,7 @@ impl BroadPhase {
         }
     }
 
-    /// Calls `f(j)` for every body in `cell`.
-    fn walk(&self, cell: CellKey, f: &mut impl FnMut(usize)) {
-        let mut j = self.heads[cell.bucket(self.mask)];
-        while j != NONE {
-            if self.keys[j as usize] == cell {
-                f(j as usize);
-            }
-            j = self.next[j as usize];
-        }
-    }
-
-    /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s.
+    /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s (`boxes` current).
     pub fn overlapping(&self, i: usize, boxes: &[Aabb], mut f: impl FnMut(usize)) {
         let bi = &boxes[i];
         if self.brute {
@@ -314,7 +427,7 @@ impl BroadPhase {
             }
             return;
         }
-        self.visit(bi, 0..=MAX_LEVEL, &mut |j| {
+        self.visit(bi, 0..LEVELS, &mut |j| {
             if j != i && bi.overlaps(&boxes[j]) {
                 f(j);
             }

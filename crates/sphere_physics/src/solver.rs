@@ -91,6 +91,8 @@ pub(crate) struct Solver {
     /// Collisions approaching no faster than this are resting contacts (restitution 0).
     resting_speed: f64,
     resting: Vec<RestingContact>,
+    /// Every pair tested this step: a superset of the pairs that can overlap at its end.
+    tested: Vec<(u32, u32)>,
     touched_flags: Vec<u32>,
     touched_epoch: u32,
     pub collisions: Vec<Collision>,
@@ -172,6 +174,7 @@ impl Solver {
         let dt = ctx.dt;
         let settings = ctx.settings;
         self.collisions.clear();
+        self.tested.clear();
         self.queue.clear();
         self.segments.clear();
         self.boxes.clear();
@@ -277,6 +280,13 @@ impl Solver {
             body.desc.position = segment.position_at(dt);
             body.desc.velocity = segment.velocity + segment.kick_after;
         }
+        // Two bodies overlapping now had overlapping boxes when either last changed, so they
+        // were tested then: the tested pairs are enough to find the largest overlap.
+        stats.max_overlap = self
+            .tested
+            .iter()
+            .map(|&(i, j)| overlap(&bodies[i as usize], &bodies[j as usize]))
+            .fold(0.0, f64::max);
     }
 
     /// Tests every pair involving a body in `touched` (all dynamic, all just changed) once,
@@ -349,6 +359,7 @@ impl Solver {
         if approach <= 0.0 || approach > self.resting_speed {
             return false;
         }
+        self.tested.push((i as u32, j as u32));
         self.resting.push(RestingContact {
             a: i as u32,
             b: j as u32,
@@ -519,6 +530,7 @@ impl Solver {
         if si.is_fixed() && sj.is_fixed() {
             return;
         }
+        self.tested.push((i as u32, j as u32));
         let d = sj.position_at(t) - si.position_at(t);
         let w = sj.velocity - si.velocity;
         let outcome = ctx.toi.time_of_impact(
@@ -613,15 +625,17 @@ impl Solver {
         let mut worst = 0.0f64;
         self.broad.rebuild(&self.boxes);
         self.broad.pairs(&self.boxes, |i, j| {
-            let (a, b) = (&bodies[i], &bodies[j]);
-            if a.is_fixed() && b.is_fixed() {
-                return;
+            if !(bodies[i].is_fixed() && bodies[j].is_fixed()) {
+                worst = worst.max(overlap(&bodies[i], &bodies[j]));
             }
-            let overlap = a.radius() + b.radius() - (b.position() - a.position()).length();
-            worst = worst.max(overlap);
         });
         worst
     }
+}
+
+/// How far two bodies overlap (negative when apart).
+fn overlap(a: &Body, b: &Body) -> f64 {
+    a.radius() + b.radius() - (b.position() - a.position()).length()
 }
 
 /// The box a segment sweeps over the rest of the step, grown by the contact tolerance.

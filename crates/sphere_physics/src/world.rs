@@ -272,7 +272,6 @@ impl World {
         stats.kinetic_energy = self.kinetic_energy();
         stats.potential_energy = self.potential_energy();
         stats.momentum = self.momentum();
-        stats.max_overlap = self.solver.max_overlap(&self.bodies);
         self.stats = stats;
         Ok(&self.stats)
     }

@@ -105,20 +105,31 @@ pub(crate) struct BroadPhase {
     keys: Vec<CellKey>,
     /// Bodies per level (sorted and overlay).
     level_counts: Vec<u32>,
+    /// The largest box on each level (at most its cell): a body overlapping a query box has its
+    /// lower corner at most this far below the query's.
+    level_extents: Vec<f64>,
     /// The sorted arrays: bucket `b` holds sorted positions `start[b]..start[b + 1]`.
     start: Vec<u32>,
     order: Vec<u32>,
     sorted_keys: Vec<CellKey>,
     sorted_boxes: Vec<Aabb>,
     sorted_position: Vec<u32>,
+    permutation: Vec<u32>,
     /// The overlay: bodies that left their sorted cell, in bucket lists.
     in_overlay: Vec<bool>,
     overlay_heads: Vec<u32>,
     next: Vec<u32>,
     prev: Vec<u32>,
     overlay_level_counts: Vec<u32>,
+    /// Bodies on each level above 0, while there are few of them (big spheres: a dome,
+    /// walls): testing them directly beats visiting cells. May hold bodies that have since
+    /// left the level; each body at most once.
+    members: Vec<Vec<u32>>,
     scratch: Vec<f64>,
 }
+
+/// Levels with at most this many bodies are scanned through their member lists.
+const FEW: usize = 16;
 
 impl BroadPhase {
     /// Rebuilds the grid for `boxes`.
@@ -140,13 +151,22 @@ impl BroadPhase {
         self.keys.clear();
         self.level_counts.clear();
         self.level_counts.resize(LEVELS, 0);
+        self.level_extents.clear();
+        self.level_extents.resize(LEVELS, 0.0);
         self.overlay_level_counts.clear();
         self.overlay_level_counts.resize(LEVELS, 0);
         self.start.clear();
         self.start.resize(buckets + 1, 0);
-        for b in boxes {
+        self.members.resize_with(LEVELS, Vec::new);
+        self.members.iter_mut().for_each(Vec::clear);
+        for (i, b) in boxes.iter().enumerate() {
             let key = self.key_of(b);
+            if key.level > 0 && self.members[key.level as usize].len() <= FEW {
+                self.members[key.level as usize].push(i as u32);
+            }
             self.level_counts[key.level as usize] += 1;
+            let extent = &mut self.level_extents[key.level as usize];
+            *extent = extent.max(b.extent());
             let bucket = self.bucket(&key);
             self.start[bucket + 1] += 1;
             self.keys.push(key);
@@ -258,12 +278,38 @@ impl BroadPhase {
         self.key_at(self.level_for(b), b.lo)
     }
 
+    /// Renumbers the bodies by their sorted position, so that bodies near in space are near in
+    /// memory, and returns the permutation: new index `p` is old index `permutation[p]`. The
+    /// caller must reorder its boxes (and everything else indexed by body) the same way.
+    /// `None` for small scenes, which keep their order.
+    pub fn renumber_sorted(&mut self) -> Option<&[u32]> {
+        if self.brute {
+            return None;
+        }
+        std::mem::swap(&mut self.order, &mut self.permutation);
+        self.order.clear();
+        self.order.extend(0..self.permutation.len() as u32);
+        self.keys.clear();
+        self.keys.extend_from_slice(&self.sorted_keys);
+        for members in &mut self.members {
+            for m in members.iter_mut() {
+                *m = self.sorted_position[*m as usize];
+            }
+        }
+        for (p, position) in self.sorted_position.iter_mut().enumerate() {
+            *position = p as u32;
+        }
+        Some(&self.permutation)
+    }
+
     /// Body `i`'s box is now `b`.
     pub fn update(&mut self, i: usize, b: &Aabb) {
         if self.brute {
             return;
         }
         let key = self.key_of(b);
+        let extent = &mut self.level_extents[key.level as usize];
+        *extent = extent.max(b.extent());
         if !self.in_overlay[i] {
             let p = self.sorted_position[i] as usize;
             if key == self.keys[i] {
@@ -282,6 +328,10 @@ impl BroadPhase {
         self.level_counts[self.keys[i].level as usize] -= 1;
         self.keys[i] = key;
         self.level_counts[key.level as usize] += 1;
+        let members = &mut self.members[key.level as usize];
+        if key.level > 0 && members.len() <= FEW && !members.contains(&(i as u32)) {
+            members.push(i as u32);
+        }
         self.overlay_insert(i as u32);
     }
 
@@ -340,8 +390,18 @@ impl BroadPhase {
             if count == 0 {
                 continue;
             }
-            let cell = self.cells[level];
-            let lo = self.key_at(level as u32, q.lo - DVec3::splat(cell));
+            let members = &self.members[level];
+            if level > 0 && members.len() <= FEW && count as usize <= members.len() {
+                // Every body on this level is in the list: test them directly.
+                for &j in members {
+                    if self.keys[j as usize].level as usize == level {
+                        f(j as usize);
+                    }
+                }
+                continue;
+            }
+            let reach = self.level_extents[level].min(self.cells[level]);
+            let lo = self.key_at(level as u32, q.lo - DVec3::splat(reach));
             let hi = self.key_at(level as u32, q.hi);
             let cells = (f64::from(hi.x) - f64::from(lo.x) + 1.0)
                 * (f64::from(hi.y) - f64::from(lo.y) + 1.0)

@@ -90,7 +90,13 @@ pub(crate) struct Solver {
     candidates: Vec<u32>,
     /// Collisions approaching no faster than this are resting contacts (restitution 0).
     resting_speed: f64,
+    /// Touching pairs closing slower than this are left alone until the next step.
+    creep_speed: f64,
     resting: Vec<RestingContact>,
+    /// Solver index `p` is body index `order[p]` (the broad phase's spatial order).
+    order: Vec<u32>,
+    scratch_segments: Vec<Segment>,
+    scratch_boxes: Vec<Aabb>,
     /// Every pair tested this step: a superset of the pairs that can overlap at its end.
     tested: Vec<(u32, u32)>,
     touched_flags: Vec<u32>,
@@ -205,6 +211,7 @@ impl Solver {
         }
 
         self.resting_speed = settings.resting_factor * largest_acceleration * dt;
+        self.creep_speed = settings.creep_fraction * self.resting_speed;
 
         // First impacts of every pair whose swept boxes meet.
         let (mut broad, boxes) = (
@@ -212,6 +219,23 @@ impl Solver {
             std::mem::take(&mut self.boxes),
         );
         broad.rebuild(&boxes);
+        // Work in the broad phase's spatial order: neighbours in space are neighbours in memory.
+        let mut boxes = boxes;
+        self.order.clear();
+        match broad.renumber_sorted() {
+            Some(permutation) => {
+                self.order.extend_from_slice(permutation);
+                self.scratch_segments.clear();
+                self.scratch_segments
+                    .extend(self.order.iter().map(|&i| self.segments[i as usize]));
+                std::mem::swap(&mut self.segments, &mut self.scratch_segments);
+                self.scratch_boxes.clear();
+                self.scratch_boxes
+                    .extend(self.order.iter().map(|&i| boxes[i as usize]));
+                std::mem::swap(&mut boxes, &mut self.scratch_boxes);
+            }
+            None => self.order.extend(0..self.segments.len() as u32),
+        }
         // Touching pairs that approach no faster than the resting speed are resting contacts,
         // solved together below; every other pair gets its time of impact.
         self.resting.clear();
@@ -276,7 +300,8 @@ impl Solver {
             self.requery_touched(event.time, ctx, stats);
         }
 
-        for (body, segment) in bodies.iter_mut().zip(&self.segments) {
+        for (&i, segment) in self.order.iter().zip(&self.segments) {
+            let body = &mut bodies[i as usize];
             body.desc.position = segment.position_at(dt);
             body.desc.velocity = segment.velocity + segment.kick_after;
         }
@@ -285,7 +310,10 @@ impl Solver {
         stats.max_overlap = self
             .tested
             .iter()
-            .map(|&(i, j)| overlap(&bodies[i as usize], &bodies[j as usize]))
+            .map(|&(i, j)| {
+                let (a, b) = (self.order[i as usize], self.order[j as usize]);
+                overlap(&bodies[a as usize], &bodies[b as usize])
+            })
             .fold(0.0, f64::max);
     }
 
@@ -401,8 +429,8 @@ impl Solver {
             stats.collisions += 1;
             stats.resting_contacts += 1;
             self.collisions.push(Collision {
-                a: bodies[a].id(),
-                b: bodies[b].id(),
+                a: bodies[self.order[a] as usize].id(),
+                b: bodies[self.order[b] as usize].id(),
                 time: ctx.start_time,
                 normal: c.normal,
                 point: sa.position + c.normal * sa.radius,
@@ -506,8 +534,8 @@ impl Solver {
             stats.resting_contacts += u32::from(resting);
             let sa = &self.segments[a];
             self.collisions.push(Collision {
-                a: bodies[a].id(),
-                b: bodies[b].id(),
+                a: bodies[self.order[a] as usize].id(),
+                b: bodies[self.order[b] as usize].id(),
                 time: ctx.start_time + t,
                 normal: c.normal,
                 point: sa.position + c.normal * sa.radius,
@@ -533,6 +561,15 @@ impl Solver {
         self.tested.push((i as u32, j as u32));
         let d = sj.position_at(t) - si.position_at(t);
         let w = sj.velocity - si.velocity;
+        let reach = si.radius + sj.radius;
+        if self.creep_speed > 0.0 && d.length_squared() <= (reach * (1.0 + 1e-6)).powi(2) {
+            // Touching and closing slower than the creep speed: left to the next step's resting
+            // solve, rather than chased through a pile contact by contact.
+            let distance = d.length();
+            if distance > 0.0 && -w.dot(d) <= self.creep_speed * distance {
+                return;
+            }
+        }
         let outcome = ctx.toi.time_of_impact(
             d,
             w,
@@ -602,8 +639,8 @@ impl Solver {
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);
         self.collisions.push(Collision {
-            a: bodies[a].id(),
-            b: bodies[b].id(),
+            a: bodies[self.order[a] as usize].id(),
+            b: bodies[self.order[b] as usize].id(),
             time: ctx.start_time + t,
             normal,
             point: sa.position + normal * sa.radius,

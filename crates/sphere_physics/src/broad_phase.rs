@@ -216,7 +216,10 @@ impl BroadPhase {
         let median = if self.scratch.is_empty() {
             1.0
         } else {
-            *self.scratch.select_nth_unstable_by(middle, f64::total_cmp).1
+            *self
+                .scratch
+                .select_nth_unstable_by(middle, f64::total_cmp)
+                .1
         };
         let typical = self
             .scratch
@@ -442,11 +445,7 @@ impl BroadPhase {
         // In sorted order, so memory is read nearly in order. A pair on one level is reported
         // from the forward side of its pair of cells (in one cell: from the earlier entry); a
         // pair across levels by the body on the lower level.
-        let highest = self
-            .level_counts
-            .iter()
-            .rposition(|&c| c > 0)
-            .unwrap_or(0);
+        let highest = self.level_counts.iter().rposition(|&c| c > 0).unwrap_or(0);
         for (p, (key, bp)) in self.sorted_keys.iter().zip(&self.sorted_boxes).enumerate() {
             let i = self.order[p] as usize;
             for (n, &(dx, dy, dz)) in FORWARD.iter().enumerate() {
@@ -457,7 +456,11 @@ impl BroadPhase {
                     z: key.z.wrapping_add(dz),
                 };
                 let b = self.bucket(&cell);
-                let from = if n == 0 { p + 1 } else { self.start[b] as usize };
+                let from = if n == 0 {
+                    p + 1
+                } else {
+                    self.start[b] as usize
+                };
                 for q in from..self.start[b + 1] as usize {
                     if self.sorted_keys[q] == cell && bp.overlaps(&self.sorted_boxes[q]) {
                         let j = self.order[q] as usize;

@@ -375,13 +375,79 @@ impl BroadPhase {
                 f(self.order[p] as usize);
             }
         }
+        self.walk_overlay(cell, f);
+    }
+
+    /// Calls `f(j)` for every overlay body in `cell`.
+    #[inline]
+    fn walk_overlay(&self, cell: CellKey, f: &mut impl FnMut(usize)) {
         if self.overlay_level_counts[cell.level as usize] > 0 {
-            let mut j = self.overlay_heads[b];
+            let mut j = self.overlay_heads[self.bucket(&cell)];
             while j != NONE {
                 if self.keys[j as usize] == cell {
                     f(j as usize);
                 }
                 j = self.next[j as usize];
+            }
+        }
+    }
+
+    /// Whether the level-0 cells `xlo..=xhi` of one row sit in consecutive buckets.
+    #[inline]
+    fn contiguous(&self, xlo: i32, xhi: i32) -> bool {
+        let m = (1usize << self.bits) - 1;
+        (xlo as usize & m) + (xhi - xlo) as usize <= m
+    }
+
+    /// Calls `f(q)` for each sorted position `q` in `from..to` on `level`, in row `(y, z)`,
+    /// with `x` in `xlo..=xhi`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn scan(
+        &self,
+        from: usize,
+        to: usize,
+        level: u32,
+        y: i32,
+        z: i32,
+        xlo: i32,
+        xhi: i32,
+        f: &mut impl FnMut(usize),
+    ) {
+        for q in from..to {
+            let k = &self.sorted_keys[q];
+            if k.y == y && k.z == z && k.level == level && k.x >= xlo && k.x <= xhi {
+                f(q);
+            }
+        }
+    }
+
+    /// Calls `f(q)` for each sorted position `q` (from `from` on, in the first cell) in the
+    /// level-0 cells `xlo..=xhi` of row `(y, z)`.
+    #[inline]
+    fn scan_row(
+        &self,
+        from: Option<usize>,
+        y: i32,
+        z: i32,
+        xlo: i32,
+        xhi: i32,
+        f: &mut impl FnMut(usize),
+    ) {
+        let cell = |x| CellKey { level: 0, x, y, z };
+        if self.contiguous(xlo, xhi) {
+            let first = self.bucket(&cell(xlo));
+            let last = self.bucket(&cell(xhi));
+            let from = from.unwrap_or(self.start[first] as usize);
+            self.scan(from, self.start[last + 1] as usize, 0, y, z, xlo, xhi, f);
+        } else {
+            for x in xlo..=xhi {
+                let b = self.bucket(&cell(x));
+                let from = match from {
+                    Some(from) if x == xlo => from,
+                    _ => self.start[b] as usize,
+                };
+                self.scan(from, self.start[b + 1] as usize, 0, y, z, x, x, f);
             }
         }
     }
@@ -420,9 +486,18 @@ impl BroadPhase {
             }
             for z in lo.z..=hi.z {
                 for y in lo.y..=hi.y {
-                    for x in lo.x..=hi.x {
-                        let level = level as u32;
-                        self.walk(CellKey { level, x, y, z }, f);
+                    if level == 0 {
+                        self.scan_row(None, y, z, lo.x, hi.x, &mut |q| f(self.order[q] as usize));
+                        if self.overlay_level_counts[0] > 0 {
+                            for x in lo.x..=hi.x {
+                                self.walk_overlay(CellKey { level: 0, x, y, z }, f);
+                            }
+                        }
+                    } else {
+                        for x in lo.x..=hi.x {
+                            let level = level as u32;
+                            self.walk(CellKey { level, x, y, z }, f);
+                        }
                     }
                 }
             }
@@ -448,6 +523,47 @@ impl BroadPhase {
         let highest = self.level_counts.iter().rposition(|&c| c > 0).unwrap_or(0);
         for (p, (key, bp)) in self.sorted_keys.iter().zip(&self.sorted_boxes).enumerate() {
             let i = self.order[p] as usize;
+            if key.level == 0 {
+                // Rows of cells along x sit in consecutive buckets: the own cell (after p) and
+                // the next one, then three cells in each of the four forward rows.
+                let mut report = |q: usize| {
+                    if bp.overlaps(&self.sorted_boxes[q]) {
+                        let j = self.order[q] as usize;
+                        f(i.min(j), i.max(j));
+                    }
+                };
+                let (x, y, z) = (key.x, key.y, key.z);
+                self.scan_row(Some(p + 1), y, z, x, x.wrapping_add(1), &mut report);
+                for (dy, dz) in [(1, 0), (-1, 1), (0, 1), (1, 1)] {
+                    let (y, z) = (y.wrapping_add(dy), z.wrapping_add(dz));
+                    self.scan_row(
+                        None,
+                        y,
+                        z,
+                        x.wrapping_sub(1),
+                        x.wrapping_add(1),
+                        &mut report,
+                    );
+                }
+            } else {
+                self.pairs_in_cells(p, key, bp, &mut f);
+            }
+            let level = key.level as usize;
+            if level < highest {
+                self.visit(bp, level + 1..highest + 1, &mut |j| {
+                    if bp.overlaps(&boxes[j]) {
+                        f(i.min(j), i.max(j));
+                    }
+                });
+            }
+        }
+    }
+
+    /// Pairs of the body at sorted position `p` with the bodies of its own cell (after it) and
+    /// the 13 forward neighbour cells, on its (hashed) level.
+    fn pairs_in_cells(&self, p: usize, key: &CellKey, bp: &Aabb, f: &mut impl FnMut(usize, usize)) {
+        let i = self.order[p] as usize;
+        {
             for (n, &(dx, dy, dz)) in FORWARD.iter().enumerate() {
                 let cell = CellKey {
                     level: key.level,
@@ -467,14 +583,6 @@ impl BroadPhase {
                         f(i.min(j), i.max(j));
                     }
                 }
-            }
-            let level = key.level as usize;
-            if level < highest {
-                self.visit(bp, level + 1..highest + 1, &mut |j| {
-                    if bp.overlaps(&boxes[j]) {
-                        f(i.min(j), i.max(j));
-                    }
-                });
             }
         }
     }

@@ -375,6 +375,9 @@ impl Solver {
         if si.is_fixed() && sj.is_fixed() {
             return true;
         }
+        if self.resting_speed == 0.0 {
+            return false;
+        }
         let d = sj.position - si.position;
         let reach = si.radius + sj.radius;
         let band = reach * 1e-6 + settings.tolerance.epsilon() * (1.0 + reach);

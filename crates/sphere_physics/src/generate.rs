@@ -304,6 +304,7 @@ impl Generator {
                         restitution,
                         force: [0.0; 3],
                         fixed: false,
+                        tether: None,
                     })
                     .collect())
             }
@@ -339,6 +340,7 @@ impl Generator {
                             restitution,
                             force: [0.0; 3],
                             fixed: false,
+                            tether: None,
                         }
                     })
                     .collect();
@@ -359,6 +361,7 @@ impl Generator {
                                 restitution,
                                 force: [0.0; 3],
                                 fixed: true,
+                                tether: None,
                             });
                         }
                     }

@@ -79,6 +79,10 @@ pub struct GroupContact {
     pub normal: DVec3,
     /// The contact's restitution.
     pub restitution: f64,
+    /// A string rather than a contact: `b` is its anchor (inverse mass 0, at rest) and `normal`
+    /// points from the anchor side outward, so "not approaching" means "not stretching". It
+    /// gets no restitution and is enforced again after the restitution impulses.
+    pub string: bool,
 }
 
 /// The most sweeps [`resolve_simultaneous`] makes over its contacts.
@@ -133,8 +137,32 @@ pub fn resolve_simultaneous(
         }
     }
     for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
-        let extra = c.restitution * *impulse;
-        apply(velocities, c, extra);
-        *impulse += extra;
+        if !c.string {
+            let extra = c.restitution * *impulse;
+            apply(velocities, c, extra);
+            *impulse += extra;
+        }
+    }
+    // The restitution impulses may stretch a string: pull it back (restitution 0), one pass per
+    // string, each only ever pulling.
+    for _ in 0..MAX_GROUP_SWEEPS {
+        let mut largest_change = 0.0f64;
+        for (c, impulse) in contacts
+            .iter()
+            .zip(impulses.iter_mut())
+            .filter(|(c, _)| c.string)
+        {
+            let inverse_sum = inverse_masses[c.a] + inverse_masses[c.b];
+            let normal_speed = (velocities[c.b] - velocities[c.a]).dot(c.normal);
+            if inverse_sum > 0.0 && normal_speed < 0.0 {
+                let change = -normal_speed / inverse_sum;
+                apply(velocities, c, change);
+                *impulse += change;
+                largest_change = largest_change.max(-normal_speed);
+            }
+        }
+        if largest_change <= 1e-15 * scale {
+            break;
+        }
     }
 }

@@ -25,7 +25,7 @@ use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
 
 use crate::generate::{GenerateError, Generator};
-use crate::{BodyError, IntegratorKind, Settings, SphereDesc, ToiMethod, World};
+use crate::{BodyError, IntegratorKind, Settings, SphereDesc, Tether, ToiMethod, World};
 
 fn one() -> f64 {
     1.0
@@ -55,6 +55,9 @@ pub struct SceneDesc {
     /// The scene's preferred time step in seconds (a runner's default; none means 1/60).
     #[serde(default)]
     pub dt: Option<f64>,
+    /// Substeps per step (default 1; see [`Settings::substeps`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substeps: Option<u32>,
     /// The spheres; their order is their body ids' order.
     #[serde(default)]
     pub spheres: Vec<SphereSpec>,
@@ -89,6 +92,9 @@ pub struct SphereSpec {
     /// Fixed: infinite mass (default false).
     #[serde(default)]
     pub fixed: bool,
+    /// A string to a fixed anchor: `tether: (anchor: (x, y, z), length: L)` (default none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tether: Option<Tether>,
 }
 
 /// What can go wrong loading or building a scene.
@@ -204,10 +210,18 @@ impl SceneDesc {
                 reason: "must be finite and > 0",
             });
         }
+        if self.substeps == Some(0) {
+            return Err(SceneError::Setting {
+                field: "substeps",
+                value: 0.0,
+                reason: "must be at least 1",
+            });
+        }
         Ok(Settings {
             gravity,
             method: self.method.unwrap_or_default(),
             integrator: self.integrator.unwrap_or_default(),
+            substeps: self.substeps.unwrap_or(1),
             ..Settings::default()
         })
     }
@@ -236,6 +250,7 @@ impl SceneDesc {
                 restitution: s.restitution.unwrap_or(self.restitution),
                 force: s.force.into(),
                 fixed: s.fixed,
+                tether: s.tether,
             })
             .collect())
     }

@@ -13,7 +13,7 @@ use glam::DVec3;
 
 use crate::broad_phase::{Aabb, BroadPhase};
 use crate::response::{GroupContact, resolve, resolve_simultaneous};
-use crate::{Body, Collision, Integrator, Settings, StepStats, TimeOfImpact};
+use crate::{Body, Collision, Integrator, Settings, StepStats, Tether, TimeOfImpact};
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
 #[derive(Clone, Copy, Debug)]
@@ -22,6 +22,10 @@ struct Segment {
     position: DVec3,
     velocity: DVec3,
     kick_after: DVec3,
+    acceleration: DVec3,
+    tether: Option<Tether>,
+    /// The string bent this segment's drift: it is at its length.
+    taut: bool,
     inverse_mass: f64,
     radius: f64,
     restitution: f64,
@@ -88,10 +92,12 @@ pub(crate) struct Solver {
     queue: BinaryHeap<Reverse<Event>>,
     broad: BroadPhase,
     candidates: Vec<u32>,
-    /// Collisions approaching no faster than this are resting contacts (restitution 0).
-    resting_speed: f64,
-    /// Touching pairs closing slower than this are left alone until the next step.
-    creep_speed: f64,
+    /// A collision approaching no faster than this times the acceleration pressing the pair
+    /// together is a resting contact (restitution 0); 0 when nothing accelerates.
+    resting_scale: f64,
+    /// Touching pairs closing slower than this times their pressing acceleration are left
+    /// alone until the next step.
+    creep_scale: f64,
     resting: Vec<RestingContact>,
     /// Solver index `p` is body index `order[p]` (the broad phase's spatial order).
     order: Vec<u32>,
@@ -179,7 +185,6 @@ impl Solver {
     pub fn step(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
         let dt = ctx.dt;
         let settings = ctx.settings;
-        self.collisions.clear();
         self.tested.clear();
         self.queue.clear();
         self.segments.clear();
@@ -187,20 +192,29 @@ impl Solver {
         let mut dynamic = 0u32;
         let mut largest_acceleration = 0.0f64;
         for body in bodies.iter() {
-            let kicks = if body.is_fixed() {
-                Default::default()
+            let (acceleration, kicks) = if body.is_fixed() {
+                (DVec3::ZERO, Default::default())
             } else {
                 dynamic += 1;
                 let a = settings.gravity + body.force() * body.inverse_mass();
                 largest_acceleration = largest_acceleration.max(a.length());
                 let k = ctx.integrator.kicks(body.velocity(), a, dt);
-                (k.before, k.after)
+                (a, (k.before, k.after))
             };
+            let tether = body.tether();
+            let mut velocity = body.velocity() + kicks.0;
+            let mut taut = false;
+            if let Some(tether) = tether {
+                (velocity, taut) = chord(body.position(), velocity, tether, dt);
+            }
             let segment = Segment {
                 t0: 0.0,
                 position: body.position(),
-                velocity: body.velocity() + kicks.0,
+                velocity,
                 kick_after: kicks.1,
+                acceleration,
+                tether,
+                taut,
                 inverse_mass: body.inverse_mass(),
                 radius: body.radius(),
                 restitution: body.restitution(),
@@ -210,8 +224,12 @@ impl Solver {
             self.segments.push(segment);
         }
 
-        self.resting_speed = settings.resting_factor * largest_acceleration * dt;
-        self.creep_speed = settings.creep_fraction * self.resting_speed;
+        self.resting_scale = if largest_acceleration > 0.0 {
+            settings.resting_factor * dt
+        } else {
+            0.0
+        };
+        self.creep_scale = settings.creep_fraction * self.resting_scale;
 
         // First impacts of every pair whose swept boxes meet.
         let (mut broad, boxes) = (
@@ -302,8 +320,13 @@ impl Solver {
 
         for (&i, segment) in self.order.iter().zip(&self.segments) {
             let body = &mut bodies[i as usize];
-            body.desc.position = segment.position_at(dt);
-            body.desc.velocity = segment.velocity + segment.kick_after;
+            let mut position = segment.position_at(dt);
+            let mut velocity = segment.velocity + segment.kick_after;
+            if let Some(tether) = segment.tether {
+                (position, velocity) = taut(position, velocity, tether);
+            }
+            body.desc.position = position;
+            body.desc.velocity = velocity;
         }
         // Two bodies overlapping now had overlapping boxes when either last changed, so they
         // were tested then: the tested pairs are enough to find the largest overlap.
@@ -375,7 +398,7 @@ impl Solver {
         if si.is_fixed() && sj.is_fixed() {
             return true;
         }
-        if self.resting_speed == 0.0 {
+        if self.resting_scale == 0.0 {
             return false;
         }
         let d = sj.position - si.position;
@@ -387,7 +410,7 @@ impl Solver {
         }
         let normal = d / distance_squared.sqrt();
         let approach = -(sj.velocity - si.velocity).dot(normal);
-        if approach <= 0.0 || approach > self.resting_speed {
+        if approach <= 0.0 || approach > self.resting_scale * pressing(si, sj, normal) {
             return false;
         }
         self.tested.push((i as u32, j as u32));
@@ -403,7 +426,15 @@ impl Solver {
     /// Solves all resting contacts at once (projected Gauss–Seidel, restitution 0), then marks
     /// the bodies it changed as touched.
     fn solve_resting(&mut self, bodies: &[Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
-        let threshold = 1e-9 * self.resting_speed;
+        let threshold = 1e-9
+            * self
+                .resting
+                .iter()
+                .map(|c| {
+                    let (a, b) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
+                    self.resting_scale * pressing(a, b, c.normal)
+                })
+                .fold(0.0, f64::max);
         for _ in 0..RESTING_SWEEPS {
             let mut largest = 0.0f64;
             for c in self.resting.iter_mut() {
@@ -445,6 +476,10 @@ impl Solver {
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
             let segment = &mut self.segments[k];
+            if let Some(tether) = segment.tether {
+                (segment.velocity, segment.taut) =
+                    chord(segment.position, segment.velocity, tether, ctx.dt);
+            }
             segment.version += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
         }
@@ -480,7 +515,20 @@ impl Solver {
             let segment = &mut self.segments[k as usize];
             segment.advance_to(t);
             self.local_inverse_masses.push(segment.inverse_mass);
-            self.local_velocities.push(segment.velocity);
+            let mut velocity = segment.velocity;
+            if let (Some(tether), true) = (segment.tether, segment.taut) {
+                // The drift is a chord of the string's sphere; the sphere itself is on that
+                // sphere, moving tangent to it. Put it there (a move of at most the chord's
+                // sagitta, ~(v·dt)²/8L) and drop the drift's radial part (the string's pull).
+                let r = segment.position - tether.anchor;
+                let distance = r.length();
+                if distance > 0.0 {
+                    let normal = r / distance;
+                    segment.position = tether.anchor + normal * tether.length;
+                    velocity -= normal * velocity.dot(normal);
+                }
+            }
+            self.local_velocities.push(velocity);
         }
         self.local_contacts.clear();
         self.local_resting.clear();
@@ -493,7 +541,7 @@ impl Solver {
             }
             let normal = d / distance;
             let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-            let resting = approach_speed <= self.resting_speed;
+            let resting = approach_speed <= self.resting_scale * pressing(sa, sb, normal);
             self.local_resting.push(resting);
             self.local_contacts.push(GroupContact {
                 a: local(&self.local_bodies, e.a),
@@ -506,7 +554,27 @@ impl Solver {
                         .restitution_combine
                         .combine(sa.restitution, sb.restitution)
                 },
+                string: false,
             });
+        }
+        // Taut strings of the bodies involved, each to a virtual fixed anchor.
+        for (local, &k) in self.local_bodies.iter().enumerate() {
+            let segment = &self.segments[k as usize];
+            if let (Some(tether), true) = (segment.tether, segment.taut) {
+                let r = segment.position - tether.anchor;
+                let distance = r.length();
+                if distance > 0.0 {
+                    self.local_contacts.push(GroupContact {
+                        a: local,
+                        b: self.local_inverse_masses.len(),
+                        normal: r / distance,
+                        restitution: 0.0,
+                        string: true,
+                    });
+                    self.local_inverse_masses.push(0.0);
+                    self.local_velocities.push(DVec3::ZERO);
+                }
+            }
         }
         resolve_simultaneous(
             &self.local_inverse_masses,
@@ -520,6 +588,10 @@ impl Solver {
                 continue;
             }
             segment.velocity = velocity;
+            if let Some(tether) = segment.tether {
+                (segment.velocity, segment.taut) =
+                    chord(segment.position, velocity, tether, ctx.dt - t);
+            }
             segment.version += 1;
             self.boxes[k as usize] = swept_box(segment, ctx.dt, settings);
         }
@@ -565,12 +637,16 @@ impl Solver {
         let d = sj.position_at(t) - si.position_at(t);
         let w = sj.velocity - si.velocity;
         let reach = si.radius + sj.radius;
-        if self.creep_speed > 0.0 && d.length_squared() <= (reach * (1.0 + 1e-6)).powi(2) {
+        if self.creep_scale > 0.0 && d.length_squared() <= (reach * (1.0 + 1e-6)).powi(2) {
             // Touching and closing slower than the creep speed: left to the next step's resting
             // solve, rather than chased through a pile contact by contact.
             let distance = d.length();
-            if distance > 0.0 && -w.dot(d) <= self.creep_speed * distance {
-                return;
+            if distance > 0.0 {
+                let normal = d / distance;
+                let creep = self.creep_scale * pressing(si, sj, normal);
+                if -w.dot(normal) <= creep {
+                    return;
+                }
             }
         }
         let outcome = ctx.toi.time_of_impact(
@@ -602,6 +678,11 @@ impl Solver {
     ) {
         let (a, b) = (event.a as usize, event.b as usize);
         let t = event.time;
+        if self.segments[a].taut || self.segments[b].taut {
+            // A taut string takes part in the impact: solve it with the contact.
+            self.resolve_group(std::slice::from_ref(event), t, bodies, ctx, stats);
+            return;
+        }
         self.segments[a].advance_to(t);
         self.segments[b].advance_to(t);
         let (sa, sb) = (self.segments[a], self.segments[b]);
@@ -613,7 +694,7 @@ impl Solver {
         let normal = d / distance;
         let settings = ctx.settings;
         let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-        let resting = approach_speed <= self.resting_speed;
+        let resting = approach_speed <= self.resting_scale * pressing(&sa, &sb, normal);
         let restitution = if resting {
             0.0
         } else {
@@ -636,6 +717,10 @@ impl Solver {
                 continue;
             }
             segment.velocity = velocity;
+            if let Some(tether) = segment.tether {
+                (segment.velocity, segment.taut) =
+                    chord(segment.position, velocity, tether, ctx.dt - t);
+            }
             segment.version += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, settings);
         }
@@ -671,6 +756,65 @@ impl Solver {
         });
         worst
     }
+}
+
+/// The acceleration pressing a pair together along `normal` (from `a` to `b`): the larger
+/// component of either body's own acceleration along the line of centres. A ball on another
+/// under gravity presses with g; two balls side by side (a cradle) do not press at all.
+fn pressing(a: &Segment, b: &Segment, normal: DVec3) -> f64 {
+    a.acceleration
+        .dot(normal)
+        .abs()
+        .max(b.acceleration.dot(normal).abs())
+}
+
+/// The velocity that carries a tethered sphere from `position` over `tau` to where its string
+/// allows (the SHAKE correction): unchanged while the string stays slack, otherwise bent along
+/// the string's current direction so the drift ends exactly at the string's length.
+/// Also says whether the string is taut (bent the drift).
+fn chord(position: DVec3, velocity: DVec3, tether: Tether, tau: f64) -> (DVec3, bool) {
+    let r = position - tether.anchor;
+    if tau <= 0.0 {
+        return (velocity, r.length() >= tether.length * (1.0 - 1e-9));
+    }
+    let q = r + velocity * tau;
+    let (length, qq, rr) = (tether.length, q.length_squared(), r.length_squared());
+    if qq <= length * length || rr == 0.0 {
+        return (velocity, false);
+    }
+    // |q - s r| = L, smaller root, written without cancellation.
+    let qr = q.dot(r);
+    let excess = (q.length() - length) * (q.length() + length);
+    let discriminant = qr * qr - rr * excess;
+    let end = if qr > 0.0 && discriminant >= 0.0 {
+        q - r * (excess / (qr + discriminant.sqrt()))
+    } else {
+        q * (length / q.length())
+    };
+    ((end - r) / tau, true)
+}
+
+/// At the end of a step: a sphere at (or, after rounding, past) its string's length is put back
+/// on it and loses its outward radial velocity (the RATTLE velocity projection).
+fn taut(position: DVec3, velocity: DVec3, tether: Tether) -> (DVec3, DVec3) {
+    let r = position - tether.anchor;
+    let distance = r.length();
+    if distance == 0.0 || distance < tether.length * (1.0 - 1e-9) {
+        return (position, velocity);
+    }
+    let normal = r / distance;
+    let position = if distance > tether.length {
+        tether.anchor + normal * tether.length
+    } else {
+        position
+    };
+    let outward = velocity.dot(normal);
+    let velocity = if outward > 0.0 {
+        velocity - normal * outward
+    } else {
+        velocity
+    };
+    (position, velocity)
 }
 
 /// How far two bodies overlap (negative when apart).

@@ -92,6 +92,7 @@ fn one_contact_resolved_simultaneously_equals_resolve() {
         b: 1,
         normal,
         restitution: 0.7,
+        string: false,
     };
     resolve_simultaneous(&[0.5, 0.25], &mut velocities, &[contact], &mut impulses);
     assert!(close(velocities[0], expected.velocity_a, 1e-14));
@@ -159,7 +160,7 @@ mod properties {
                 .filter(|(a, b)| a < b)
                 .map(|&(a, b)| (a, b, positions[b] - positions[a]))
                 .filter(|(_, _, d)| d.length() > 1e-3)
-                .map(|(a, b, d)| GroupContact { a, b, normal: d.normalize(), restitution })
+                .map(|(a, b, d)| GroupContact { a, b, normal: d.normalize(), restitution, string: false })
                 .collect();
             let mut v = velocities.clone();
             let mut impulses = Vec::new();

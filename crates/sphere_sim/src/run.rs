@@ -170,6 +170,8 @@ pub struct Report {
     pub method: String,
     /// Integrator.
     pub integrator: String,
+    /// Substeps per step.
+    pub substeps: u32,
     /// Time step.
     pub dt: f64,
     /// Duration asked for.
@@ -257,6 +259,7 @@ pub fn play(
         scene: scene.name.clone(),
         method: method_name(&world.settings().method),
         integrator: format!("{:?}", world.settings().integrator),
+        substeps: world.settings().substeps,
         dt,
         duration: playback.duration,
         time: world.time(),

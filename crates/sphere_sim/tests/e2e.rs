@@ -380,3 +380,23 @@ fn help_and_version() {
     let out = sim(&["--version"]);
     assert!(out.status.success());
 }
+
+#[test]
+fn tethered_cradle_swings_for_a_minute() {
+    let scene = assets().join("newtons_cradle.ron");
+    let r = report(&["run", scene.to_str().unwrap(), "--duration", "60"]);
+    assert_eq!(r["steps"], 3600);
+    assert_eq!(r["integrator"], "Leapfrog");
+    let e0 = r["initial"]["total_energy"].as_f64().unwrap();
+    let e = r["stats"]["total_energy"].as_f64().unwrap();
+    assert!((e - e0).abs() <= 0.01 * e0, "energy {e} vs {e0}");
+    // At 60 s ball 5 is out (swinging), balls 1 to 4 hang at rest.
+    let out = vec3(&body(&r, "ball 5")["velocity"]);
+    let speed = out.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert!(speed > 0.5, "ball 5 swings: {speed}");
+    for name in ["ball 1", "ball 2", "ball 3", "ball 4"] {
+        let v = vec3(&body(&r, name)["velocity"]);
+        let s = v.iter().map(|v| v * v).sum::<f64>().sqrt();
+        assert!(s < 1e-6 * speed, "{name} at {s}");
+    }
+}

@@ -1,0 +1,110 @@
+//! Components a game spawns: one line, `(SphereBody::new(0.5), Transform::from_xyz(..))`.
+//!
+//! Physics state is `f64`, as in the core ([`SpherePosition`], [`SphereVelocity`]); the
+//! plugin writes Bevy's `f32` [`Transform`] from it, interpolated between fixed steps.
+
+use bevy::math::DVec3;
+use bevy::prelude::*;
+use sphere_physics::BodyError;
+
+/// A sphere in the simulation. Spawning it with a [`Transform`] is enough: every other physics
+/// component is filled in with a default (at rest, density 1, restitution 1, no force).
+///
+/// The sphere starts where its [`SpherePosition`] says if one is spawned with it, else at its
+/// `Transform`'s translation. Changing `radius` later re-validates the body; see the crate docs
+/// for what changes mid-simulation do.
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+#[require(
+    Transform,
+    SphereVelocity,
+    Density,
+    AppliedForce,
+    PreviousSpherePosition
+)]
+pub struct SphereBody {
+    /// Radius, `> 0`.
+    pub radius: f64,
+}
+
+impl SphereBody {
+    /// A sphere of this radius.
+    pub fn new(radius: f64) -> Self {
+        Self { radius }
+    }
+}
+
+/// Where the sphere's centre is in the physics world (`f64`). Written by the plugin every step;
+/// writing it from a game system teleports the sphere.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Deref, DerefMut)]
+#[reflect(Component)]
+pub struct SpherePosition(pub DVec3);
+
+/// The physics position at the previous fixed step, for interpolation.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Deref, DerefMut)]
+#[reflect(Component)]
+pub struct PreviousSpherePosition(pub DVec3);
+
+/// Linear velocity (`f64`). Written by the plugin every step; writing it from a game system
+/// sets the sphere's velocity for the next step.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Deref, DerefMut)]
+#[reflect(Component)]
+pub struct SphereVelocity(pub DVec3);
+
+/// Density (default 1): mass is density times volume.
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq, Deref, DerefMut)]
+#[reflect(Component)]
+pub struct Density(pub f64);
+
+impl Default for Density {
+    fn default() -> Self {
+        Self(1.0)
+    }
+}
+
+/// Coefficient of restitution in `[0, 1]`. A sphere without one uses the plugin's default
+/// ([`SpherePhysicsPlugin::restitution`](crate::SpherePhysicsPlugin::restitution), 1 unless set).
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq, Deref, DerefMut)]
+#[reflect(Component)]
+pub struct Restitution(pub f64);
+
+impl Default for Restitution {
+    fn default() -> Self {
+        Self(1.0)
+    }
+}
+
+/// A constant force on the sphere, on top of gravity (default none).
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Deref, DerefMut)]
+#[reflect(Component)]
+pub struct AppliedForce(pub DVec3);
+
+/// Makes a sphere fixed: infinite mass, moved by nothing (a velocity moves it kinematically).
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct FixedSphere;
+
+/// Hangs a sphere on an inextensible string of `length` from `anchor` (pulls, never pushes).
+#[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
+#[reflect(Component)]
+pub struct Tethered {
+    /// The fixed anchor point.
+    pub anchor: DVec3,
+    /// The string's length, `> 0`.
+    pub length: f64,
+}
+
+/// Opts one sphere out of interpolation: its `Transform` jumps from fixed step to fixed step.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct NoInterpolation;
+
+/// Put on a sphere whose components are invalid (radius ≤ 0, NaN, ...): it is left out of the
+/// simulation until its components change. The error names the field and the value.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct RejectedSphere {
+    /// What is wrong.
+    pub error: BodyError,
+    /// The description that was refused (tried again only once it changes).
+    pub(crate) desc: sphere_physics::SphereDesc,
+}

@@ -1,0 +1,52 @@
+//! What the plugin tells a game: collisions as messages and as entity events, and rejected
+//! spheres.
+
+use bevy::math::DVec3;
+use bevy::prelude::*;
+use sphere_physics::BodyError;
+
+/// One collision, written once per collision in [`SpherePhysicsSystems::Notify`]
+/// (crate::SpherePhysicsSystems::Notify). Read it with `MessageReader<SphereCollision>`.
+#[derive(Message, Clone, Copy, Debug, PartialEq)]
+pub struct SphereCollision {
+    /// The first sphere.
+    pub a: Entity,
+    /// The second sphere.
+    pub b: Entity,
+    /// Simulated time of the impact (within the step, not at its end).
+    pub time: f64,
+    /// Unit normal from `a` to `b`.
+    pub normal: DVec3,
+    /// Contact point on `a`'s surface.
+    pub point: DVec3,
+    /// Impulse transferred along the normal (≥ 0).
+    pub impulse: f64,
+    /// Resolved as a resting contact (restitution 0).
+    pub resting: bool,
+}
+
+/// A collision seen from one sphere: triggered on each of the two spheres once per collision,
+/// so an observer on either (`commands.spawn(..).observe(|hit: On<SphereHit>| ..)`) sees it.
+#[derive(EntityEvent, Clone, Copy, Debug, PartialEq)]
+pub struct SphereHit {
+    /// The sphere the observer watches.
+    pub entity: Entity,
+    /// The sphere it collided with.
+    pub other: Entity,
+    /// Simulated time of the impact.
+    pub time: f64,
+    /// Unit normal from `entity` towards `other`.
+    pub normal: DVec3,
+    /// Impulse transferred (≥ 0).
+    pub impulse: f64,
+}
+
+/// A sphere left out of the simulation because a component is invalid: which entity, which
+/// field, which value. Written once each time its components are found invalid.
+#[derive(Message, Clone, Debug, PartialEq)]
+pub struct SphereRejected {
+    /// The sphere.
+    pub entity: Entity,
+    /// What is wrong: the field, the value and the rule.
+    pub error: BodyError,
+}

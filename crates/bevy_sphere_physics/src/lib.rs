@@ -1,0 +1,50 @@
+//! Exact sphere physics for Bevy 0.19: [`sphere_physics`] as ordered
+//! [`FixedUpdate`](bevy::app::FixedUpdate) system
+//! sets ([`SpherePhysicsSystems`]).
+//!
+//! Add [`SpherePhysicsPlugin`] and spawn spheres with one line,
+//! `(SphereBody::new(0.5), Transform::from_xyz(0.0, 2.0, 0.0))`. Physics state is `f64`
+//! ([`SpherePosition`], [`SphereVelocity`]); the `f32` `Transform` is written from it after
+//! the fixed steps of each frame, interpolated between the last two steps (opt out per sphere
+//! with [`NoInterpolation`], or globally with [`SpherePhysicsPlugin::interpolate`]).
+//!
+//! What game systems may do, and what happens:
+//! - **Despawn a sphere** (or remove [`SphereBody`]): it leaves the simulation at the next fixed
+//!   step; collisions already reported stay reported.
+//! - **Change a component** ([`SphereVelocity`], [`SphereBody::radius`], [`Density`],
+//!   [`Restitution`], [`AppliedForce`], [`SpherePosition`] to teleport, [`FixedSphere`],
+//!   [`Tethered`]): applied at the next fixed step's `Prepare`. Writing `Transform` does
+//!   nothing: it is the plugin's output.
+//! - **Invalid values** (radius ≤ 0, NaN, restitution outside `[0, 1]`, a sphere beyond its
+//!   string): the sphere is left out of the simulation, a [`SphereRejected`] message and a
+//!   warning name the entity, the field and the value, and [`RejectedSphere`] is put on it;
+//!   it joins once its components are valid. Nothing panics.
+//! - **Spawn into an occupied place**: spheres that overlap and approach are pushed apart by
+//!   the collision response at once; overlapping spheres at rest stay as they are (the core
+//!   never moves a sphere except along its velocity), so spawn them apart.
+//!
+//! Collisions come as [`SphereCollision`] messages and as [`SphereHit`] entity events that
+//! observers on either sphere receive, once per collision. [`SpherePhysicsDiagnostics`] holds
+//! the core's per-step statistics; [`SpherePhysicsClock`] pauses and single-steps.
+#![warn(missing_docs)]
+
+pub mod components;
+pub mod events;
+mod plugin;
+pub mod resources;
+mod systems;
+
+pub use components::*;
+pub use events::{SphereCollision, SphereHit, SphereRejected};
+pub use plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
+pub use resources::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
+pub use sphere_physics;
+
+/// Everything a game needs: `use bevy_sphere_physics::prelude::*;`.
+pub mod prelude {
+    pub use crate::components::*;
+    pub use crate::events::{SphereCollision, SphereHit, SphereRejected};
+    pub use crate::plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
+    pub use crate::resources::{SpherePhysicsClock, SpherePhysicsDiagnostics};
+    pub use bevy::math::DVec3;
+}

@@ -1,0 +1,88 @@
+//! Resources: the core world, the physics clock (pause, single step) and diagnostics.
+
+use std::collections::HashMap;
+
+use bevy::prelude::*;
+use sphere_physics::{BodyId, StepStats, World};
+
+/// The core world and which entity each body belongs to. The core is the single source of the
+/// physics: the plugin only copies components in and results out.
+#[derive(Resource, Debug)]
+pub struct SpherePhysicsWorld {
+    /// The core world.
+    pub world: World,
+    pub(crate) bodies: HashMap<Entity, BodyId>,
+    pub(crate) entities: Vec<Option<Entity>>,
+}
+
+impl SpherePhysicsWorld {
+    pub(crate) fn new(world: World) -> Self {
+        Self {
+            world,
+            bodies: HashMap::new(),
+            entities: Vec::new(),
+        }
+    }
+
+    /// The body of a sphere entity, if it is in the simulation.
+    pub fn body(&self, entity: Entity) -> Option<BodyId> {
+        self.bodies.get(&entity).copied()
+    }
+
+    /// The entity of a body.
+    pub fn entity(&self, body: BodyId) -> Option<Entity> {
+        self.entities.get(body.index()).copied().flatten()
+    }
+}
+
+/// The physics clock: pause, and single steps while paused.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
+#[reflect(Resource)]
+pub struct SpherePhysicsClock {
+    /// No steps while paused (Bevy's fixed clock keeps running; the steps it asks for are
+    /// skipped, not queued).
+    pub paused: bool,
+    /// Steps still to take while paused (each fixed step takes one).
+    pub pending_steps: u32,
+}
+
+impl SpherePhysicsClock {
+    /// Pauses or resumes.
+    pub fn toggle(&mut self) {
+        self.paused = !self.paused;
+    }
+
+    /// While paused, takes one more step at the next fixed step.
+    pub fn step_once(&mut self) {
+        self.pending_steps += 1;
+    }
+
+    /// Whether the next fixed step should step the physics (and uses up a pending step).
+    pub(crate) fn take_step(&mut self) -> bool {
+        if !self.paused {
+            return true;
+        }
+        if self.pending_steps > 0 {
+            self.pending_steps -= 1;
+            return true;
+        }
+        false
+    }
+}
+
+/// The core's statistics of the last step, and totals since start.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+pub struct SpherePhysicsDiagnostics {
+    /// The last step's statistics: collisions, energies, momentum, largest overlap.
+    pub last: StepStats,
+    /// Simulated seconds.
+    pub time: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Collisions since start.
+    pub collisions: u64,
+    /// Wall-clock seconds the last core step took.
+    pub step_seconds: f64,
+    /// Spheres in the simulation.
+    pub bodies: usize,
+}

@@ -1,0 +1,287 @@
+//! The plugin's systems: copy components into the core, step it, copy results out, tell the
+//! game what collided, and interpolate transforms between fixed steps.
+
+use std::time::Instant;
+
+use bevy::math::DVec3;
+use bevy::prelude::*;
+use sphere_physics::{Body, SphereDesc, Tether};
+
+use crate::components::*;
+use crate::events::{SphereCollision, SphereHit, SphereRejected};
+use crate::resources::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
+
+/// Plugin-wide options the systems read.
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PluginOptions {
+    pub restitution: f64,
+    pub interpolate: bool,
+}
+
+/// Whether the last fixed step stepped the physics (false while paused).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Stepped(pub bool);
+
+/// The components of one sphere, as the core sees them.
+type SphereQuery<'a> = (
+    Entity,
+    &'a SphereBody,
+    &'a Transform,
+    Option<&'a SpherePosition>,
+    &'a SphereVelocity,
+    &'a Density,
+    Option<&'a Restitution>,
+    &'a AppliedForce,
+    Has<FixedSphere>,
+    Option<&'a Tethered>,
+    Option<&'a RejectedSphere>,
+    Option<&'a Name>,
+);
+
+fn describe(item: &SphereQueryItem, options: &PluginOptions) -> SphereDesc {
+    let (
+        entity,
+        body,
+        transform,
+        position,
+        velocity,
+        density,
+        restitution,
+        force,
+        fixed,
+        tether,
+        _,
+        name,
+    ) = item;
+    SphereDesc {
+        name: Some(match name {
+            Some(name) => format!("{name} ({entity})"),
+            None => format!("entity {entity}"),
+        }),
+        position: position.map_or(transform.translation.as_dvec3(), |p| p.0),
+        velocity: velocity.0,
+        radius: body.radius,
+        density: density.0,
+        restitution: restitution.map_or(options.restitution, |r| r.0),
+        force: force.0,
+        fixed: *fixed,
+        tether: tether.map(|t| Tether {
+            anchor: t.anchor,
+            length: t.length,
+        }),
+    }
+}
+
+type SphereQueryItem<'a> = <SphereQuery<'a> as bevy::ecs::query::QueryData>::Item<'a, 'a>;
+
+/// Whether the body still matches its components (exactly: the plugin writes the core's own
+/// values back, so any difference is a change made by the game).
+fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
+    let (_, sphere, _, position, velocity, density, restitution, force, fixed, tether, _, _) = item;
+    position.is_none_or(|p| p.0 == body.position())
+        && velocity.0 == body.velocity()
+        && sphere.radius == body.radius()
+        && density.0 == body.density()
+        && restitution.map_or(options.restitution, |r| r.0) == body.restitution()
+        && force.0 == body.force()
+        && *fixed == body.is_fixed()
+        && tether.map(|t| (t.anchor, t.length)) == body.desc().tether.map(|t| (t.anchor, t.length))
+}
+
+/// [`SpherePhysicsSystems::Prepare`](crate::SpherePhysicsSystems::Prepare): removes despawned
+/// spheres, adds new ones, applies changes made by game systems, and rejects invalid ones.
+pub(crate) fn prepare(
+    mut commands: Commands,
+    mut physics: ResMut<SpherePhysicsWorld>,
+    mut removed: RemovedComponents<SphereBody>,
+    spheres: Query<SphereQuery>,
+    options: Res<PluginOptions>,
+    mut rejected: MessageWriter<SphereRejected>,
+) {
+    let physics = &mut *physics;
+    for entity in removed.read() {
+        if let Some(id) = physics.bodies.remove(&entity) {
+            physics.world.remove_body(id);
+            physics.entities[id.index()] = None;
+        }
+    }
+    let mut reject = |commands: &mut Commands, entity: Entity, desc: SphereDesc, error| {
+        warn!("sphere {entity} left out of the simulation: {error}");
+        rejected.write(SphereRejected {
+            entity,
+            error: Clone::clone(&error),
+        });
+        commands
+            .entity(entity)
+            .insert(RejectedSphere { error, desc });
+    };
+    // New spheres in entity order, so ids never depend on query order.
+    let mut new = Vec::new();
+    for item in &spheres {
+        let entity = item.0;
+        match physics.bodies.get(&entity).copied() {
+            Some(id) => {
+                let body = physics.world.body(id).expect("registered bodies exist");
+                if matches(body, &item, &options) {
+                    continue;
+                }
+                let desc = describe(&item, &options);
+                if let Err(error) = physics.world.set_desc(id, desc.clone()) {
+                    physics.world.remove_body(id);
+                    physics.bodies.remove(&entity);
+                    physics.entities[id.index()] = None;
+                    if let sphere_physics::WorldError::Body(error) = error {
+                        reject(&mut commands, entity, desc, error);
+                    }
+                }
+            }
+            None => new.push(entity),
+        }
+    }
+    new.sort_unstable();
+    for entity in new {
+        let item = spheres.get(entity).expect("listed above");
+        let desc = describe(&item, &options);
+        // Still the same invalid description (compared as text, so NaN equals NaN): already
+        // reported.
+        if item
+            .10
+            .is_some_and(|r| format!("{:?}", r.desc) == format!("{desc:?}"))
+        {
+            continue;
+        }
+        match physics.world.add_sphere(desc.clone()) {
+            Ok(id) => {
+                physics.bodies.insert(entity, id);
+                if physics.entities.len() <= id.index() {
+                    physics.entities.resize(id.index() + 1, None);
+                }
+                physics.entities[id.index()] = Some(entity);
+                let mut e = commands.entity(entity);
+                e.insert((
+                    SpherePosition(desc.position),
+                    PreviousSpherePosition(desc.position),
+                ));
+                if item.10.is_some() {
+                    e.remove::<RejectedSphere>();
+                }
+            }
+            Err(error) => reject(&mut commands, entity, desc, error),
+        }
+    }
+}
+
+/// [`SpherePhysicsSystems::Step`](crate::SpherePhysicsSystems::Step): one core step of the fixed
+/// timestep (integration, collision detection and response happen together inside it: the
+/// core resolves collisions in time order between the integrator's kicks).
+pub(crate) fn step(
+    mut physics: ResMut<SpherePhysicsWorld>,
+    mut clock: ResMut<SpherePhysicsClock>,
+    mut stepped: ResMut<Stepped>,
+    mut diagnostics: ResMut<SpherePhysicsDiagnostics>,
+    time: Res<Time<Fixed>>,
+) {
+    stepped.0 = clock.take_step();
+    if !stepped.0 {
+        return;
+    }
+    let started = Instant::now();
+    let Ok(stats) = physics.world.step(time.delta_secs_f64()).copied() else {
+        stepped.0 = false;
+        return;
+    };
+    *diagnostics = SpherePhysicsDiagnostics {
+        last: stats,
+        time: physics.world.time(),
+        steps: physics.world.steps(),
+        collisions: diagnostics.collisions + u64::from(stats.collisions),
+        step_seconds: started.elapsed().as_secs_f64(),
+        bodies: physics.world.len(),
+    };
+}
+
+/// [`SpherePhysicsSystems::Writeback`](crate::SpherePhysicsSystems::Writeback): positions and
+/// velocities back into the components (`f64`, exactly the core's values).
+pub(crate) fn writeback(
+    physics: Res<SpherePhysicsWorld>,
+    stepped: Res<Stepped>,
+    mut spheres: Query<(
+        Entity,
+        &mut SpherePosition,
+        &mut PreviousSpherePosition,
+        &mut SphereVelocity,
+    )>,
+) {
+    for (entity, mut position, mut previous, mut velocity) in &mut spheres {
+        let Some(body) = physics.body(entity).and_then(|id| physics.world.body(id)) else {
+            continue;
+        };
+        previous.0 = position.0;
+        if stepped.0 {
+            position.0 = body.position();
+            velocity.0 = body.velocity();
+        }
+    }
+}
+
+/// [`SpherePhysicsSystems::Notify`](crate::SpherePhysicsSystems::Notify): a [`SphereCollision`]
+/// message per collision of the step, and a [`SphereHit`] on each of the two spheres.
+pub(crate) fn notify(
+    mut commands: Commands,
+    physics: Res<SpherePhysicsWorld>,
+    stepped: Res<Stepped>,
+    mut collisions: MessageWriter<SphereCollision>,
+) {
+    if !stepped.0 {
+        return;
+    }
+    for c in physics.world.collisions() {
+        let (Some(a), Some(b)) = (physics.entity(c.a), physics.entity(c.b)) else {
+            continue;
+        };
+        collisions.write(SphereCollision {
+            a,
+            b,
+            time: c.time,
+            normal: c.normal,
+            point: c.point,
+            impulse: c.impulse,
+            resting: c.resting,
+        });
+        for (entity, other, normal) in [(a, b, c.normal), (b, a, -c.normal)] {
+            commands.trigger(SphereHit {
+                entity,
+                other,
+                time: c.time,
+                normal,
+                impulse: c.impulse,
+            });
+        }
+    }
+}
+
+/// After the fixed steps of a frame: each sphere's `Transform` between its last two physics
+/// positions, by how far the fixed clock has run into the next step.
+pub(crate) fn interpolate(
+    time: Res<Time<Fixed>>,
+    options: Res<PluginOptions>,
+    mut spheres: Query<(
+        &SpherePosition,
+        &PreviousSpherePosition,
+        &mut Transform,
+        Has<NoInterpolation>,
+    )>,
+) {
+    let fraction = time.overstep_fraction_f64();
+    for (position, previous, mut transform, opted_out) in &mut spheres {
+        let at: DVec3 = if options.interpolate && !opted_out {
+            previous.0.lerp(position.0, fraction)
+        } else {
+            position.0
+        };
+        let at = at.as_vec3();
+        if transform.translation != at {
+            transform.translation = at;
+        }
+    }
+}

@@ -1,0 +1,382 @@
+//! Headless Bevy apps with time advanced by hand: the plugin's order, its agreement with the
+//! core, its messages and observers, interpolation, and what game systems may do.
+
+use std::time::Duration;
+
+use bevy::ecs::schedule::{LogLevel, ScheduleBuildSettings};
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_sphere_physics::prelude::*;
+use bevy_sphere_physics::sphere_physics::{self, Field, SphereDesc};
+use bevy_sphere_physics::{SpherePhysicsWorld, SphereRejected};
+
+/// 1/64 s: exact in nanoseconds and in binary, so fixed steps and frames line up exactly.
+const STEP: Duration = Duration::from_nanos(15_625_000);
+
+fn app(plugin: SpherePhysicsPlugin) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, plugin))
+        .insert_resource(Time::<Fixed>::from_duration(STEP))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(STEP));
+    let strict = |s: &mut Schedule| {
+        s.set_build_settings(ScheduleBuildSettings {
+            ambiguity_detection: LogLevel::Error,
+            ..default()
+        });
+    };
+    app.edit_schedule(FixedUpdate, strict);
+    app.edit_schedule(RunFixedMainLoop, strict);
+    app
+}
+
+/// Updates until the physics has taken `steps` more steps.
+fn run_steps(app: &mut App, steps: u64) {
+    let target = app.world().resource::<SpherePhysicsDiagnostics>().steps + steps;
+    for _ in 0..10 * steps + 10 {
+        if app.world().resource::<SpherePhysicsDiagnostics>().steps >= target {
+            return;
+        }
+        app.update();
+    }
+    panic!("the physics did not step");
+}
+
+fn position(app: &App, entity: Entity) -> DVec3 {
+    app.world().get::<SpherePosition>(entity).unwrap().0
+}
+
+fn velocity(app: &App, entity: Entity) -> DVec3 {
+    app.world().get::<SphereVelocity>(entity).unwrap().0
+}
+
+#[derive(Resource, Default)]
+struct Order(Vec<&'static str>);
+
+#[test]
+fn sets_run_in_the_documented_order_without_ambiguities() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Order>();
+    for (name, set) in [
+        ("prepare", SpherePhysicsSystems::Prepare),
+        ("step", SpherePhysicsSystems::Step),
+        ("writeback", SpherePhysicsSystems::Writeback),
+        ("notify", SpherePhysicsSystems::Notify),
+    ] {
+        app.add_systems(
+            FixedUpdate,
+            (move |mut order: ResMut<Order>| order.0.push(name)).in_set(set),
+        );
+    }
+    app.world_mut()
+        .spawn((SphereBody::new(0.5), Transform::default()));
+    run_steps(&mut app, 1);
+    assert_eq!(
+        app.world().resource::<Order>().0[..4],
+        ["prepare", "step", "writeback", "notify"]
+    );
+}
+
+/// A touching 5-ball cradle spawned as entities gives the core's answer, bit for bit.
+#[test]
+fn cradle_from_entities_matches_the_core_alone() {
+    let descs: Vec<SphereDesc> = (0..5)
+        .map(|i| {
+            let v = if i == 0 { DVec3::X * 2.0 } else { DVec3::ZERO };
+            SphereDesc::new(0.5)
+                .at(DVec3::new(i as f64 - 2.0, 0.0, 0.0))
+                .moving(v)
+        })
+        .collect();
+    let mut core = sphere_physics::World::new(sphere_physics::Settings::default());
+    for d in &descs {
+        core.add_sphere(d.clone()).unwrap();
+    }
+    let mut app = app(SpherePhysicsPlugin::default());
+    let entities: Vec<Entity> = descs
+        .iter()
+        .map(|d| {
+            app.world_mut()
+                .spawn((
+                    SphereBody::new(d.radius),
+                    SpherePosition(d.position),
+                    SphereVelocity(d.velocity),
+                ))
+                .id()
+        })
+        .collect();
+    run_steps(&mut app, 40);
+    let dt = STEP.as_secs_f64();
+    for _ in 0..40 {
+        core.step(dt).unwrap();
+    }
+    for (entity, body) in entities.iter().zip(core.bodies()) {
+        assert_eq!(position(&app, *entity), body.position());
+        assert_eq!(velocity(&app, *entity), body.velocity());
+    }
+    // One ball out at 2, the others at rest.
+    assert_eq!(velocity(&app, entities[4]), DVec3::X * 2.0);
+    for e in &entities[..4] {
+        assert_eq!(velocity(&app, *e), DVec3::ZERO);
+    }
+}
+
+#[derive(Resource, Default)]
+struct Seen {
+    messages: Vec<SphereCollision>,
+    hits: Vec<(Entity, Entity)>,
+}
+
+#[test]
+fn collision_messages_and_observers_fire_once_per_collision() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Seen>().add_systems(
+        FixedUpdate,
+        (|mut reader: MessageReader<SphereCollision>, mut seen: ResMut<Seen>| {
+            seen.messages.extend(reader.read().copied());
+        })
+        .after(SpherePhysicsSystems::Notify),
+    );
+    let observe = |hit: On<SphereHit>, mut seen: ResMut<Seen>| {
+        seen.hits.push((hit.entity, hit.other));
+    };
+    let a = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(-1.0, 0.0, 0.0)),
+            SphereVelocity(DVec3::X),
+        ))
+        .observe(observe)
+        .id();
+    let b = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(1.0, 0.0, 0.0)),
+            SphereVelocity(-DVec3::X),
+        ))
+        .observe(observe)
+        .id();
+    run_steps(&mut app, 128); // 2 s: one head-on collision at t = 0.5 s.
+    let seen = app.world().resource::<Seen>();
+    assert_eq!(seen.messages.len(), 1, "{:?}", seen.messages);
+    let m = seen.messages[0];
+    assert!((m.a, m.b) == (a, b) || (m.a, m.b) == (b, a));
+    // The normal points from `a` to `b`.
+    assert_eq!(m.normal.x.signum(), if m.a == a { 1.0 } else { -1.0 });
+    assert!((m.time - 0.5).abs() < 1e-12, "at {}", m.time);
+    assert!(m.impulse > 0.0 && !m.resting);
+    let mut hits = seen.hits.clone();
+    hits.sort();
+    let mut expected = vec![(a, b), (b, a)];
+    expected.sort();
+    assert_eq!(hits, expected, "each sphere's observer once");
+}
+
+#[test]
+fn transforms_are_interpolated_between_fixed_steps() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let moving = app
+        .world_mut()
+        .spawn((SphereBody::new(0.1), SphereVelocity(DVec3::X)))
+        .id();
+    let jumping = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            SpherePosition(DVec3::new(0.0, 5.0, 0.0)),
+            SphereVelocity(DVec3::X),
+            NoInterpolation,
+        ))
+        .id();
+    run_steps(&mut app, 4);
+    // Frames of 1.5 fixed steps: the fixed clock runs half a step into the next one.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP * 3 / 2));
+    app.update();
+    let fraction = app
+        .world()
+        .resource::<Time<Fixed>>()
+        .overstep_fraction_f64();
+    assert!(fraction > 0.0 && fraction < 1.0, "overstep {fraction}");
+    let current = position(&app, moving).x;
+    let previous = app.world().get::<PreviousSpherePosition>(moving).unwrap().x;
+    let shown = app.world().get::<Transform>(moving).unwrap().translation.x;
+    let expected = previous + (current - previous) * fraction;
+    assert!(
+        (f64::from(shown) - expected).abs() < 1e-6,
+        "{shown} vs {expected}"
+    );
+    assert!(f64::from(shown) < current);
+    let jumped = app.world().get::<Transform>(jumping).unwrap().translation.x;
+    assert_eq!(f64::from(jumped), position(&app, jumping).x as f32 as f64);
+}
+
+#[test]
+fn despawning_a_sphere_mid_simulation_removes_it() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let a = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(-2.0, 0.0, 0.0)),
+            SphereVelocity(DVec3::X),
+        ))
+        .id();
+    let b = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(2.0, 0.0, 0.0)),
+        ))
+        .id();
+    run_steps(&mut app, 10);
+    app.world_mut().despawn(b);
+    run_steps(&mut app, 300); // Long past when they would have met.
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+    assert_eq!(velocity(&app, a), DVec3::X, "nothing left to hit");
+    assert_eq!(
+        app.world()
+            .resource::<SpherePhysicsDiagnostics>()
+            .collisions,
+        0
+    );
+}
+
+#[derive(Resource, Default)]
+struct Rejections(Vec<SphereRejected>);
+
+#[test]
+fn invalid_components_are_reported_and_left_out_until_fixed() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Rejections>().add_systems(
+        FixedUpdate,
+        (|mut reader: MessageReader<SphereRejected>, mut seen: ResMut<Rejections>| {
+            seen.0.extend(reader.read().cloned());
+        })
+        .after(SpherePhysicsSystems::Prepare),
+    );
+    let bad = app
+        .world_mut()
+        .spawn((SphereBody::new(-1.0), Name::new("flat")))
+        .id();
+    let nan = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SphereVelocity(DVec3::new(f64::NAN, 0.0, 0.0)),
+        ))
+        .id();
+    run_steps(&mut app, 5);
+    let seen = &app.world().resource::<Rejections>().0;
+    assert_eq!(seen.len(), 2, "reported once each: {seen:?}");
+    let flat = seen.iter().find(|r| r.entity == bad).unwrap();
+    assert_eq!(flat.error.field, Field::Radius);
+    assert!(flat.error.to_string().contains("flat"), "{}", flat.error);
+    assert_eq!(
+        seen.iter().find(|r| r.entity == nan).unwrap().error.field,
+        Field::Velocity
+    );
+    assert!(app.world().get::<RejectedSphere>(bad).is_some());
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 0);
+    // Fixed: it joins.
+    app.world_mut().get_mut::<SphereBody>(bad).unwrap().radius = 0.5;
+    run_steps(&mut app, 1);
+    assert!(app.world().get::<RejectedSphere>(bad).is_none());
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+}
+
+#[test]
+fn game_systems_change_velocity_radius_and_position() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), Transform::from_xyz(1.0, 2.0, 3.0)))
+        .id();
+    run_steps(&mut app, 1);
+    assert_eq!(
+        position(&app, ball),
+        DVec3::new(1.0, 2.0, 3.0),
+        "starts at its Transform"
+    );
+    app.world_mut().get_mut::<SphereVelocity>(ball).unwrap().0 = DVec3::new(0.0, 0.0, 64.0);
+    run_steps(&mut app, 1);
+    assert_eq!(position(&app, ball), DVec3::new(1.0, 2.0, 4.0));
+    app.world_mut().get_mut::<SpherePosition>(ball).unwrap().0 = DVec3::ZERO;
+    app.world_mut().get_mut::<SphereBody>(ball).unwrap().radius = 2.0;
+    run_steps(&mut app, 1);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    let body = physics.world.body(physics.body(ball).unwrap()).unwrap();
+    assert_eq!(body.radius(), 2.0);
+    assert_eq!(body.position(), DVec3::new(0.0, 0.0, 1.0));
+}
+
+#[test]
+fn pause_and_single_step() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 2);
+    app.world_mut().resource_mut::<SpherePhysicsClock>().paused = true;
+    let (steps, at) = (
+        app.world().resource::<SpherePhysicsDiagnostics>().steps,
+        position(&app, ball),
+    );
+    for _ in 0..10 {
+        app.update();
+    }
+    assert_eq!(
+        app.world().resource::<SpherePhysicsDiagnostics>().steps,
+        steps
+    );
+    assert_eq!(position(&app, ball), at);
+    let shown = app.world().get::<Transform>(ball).unwrap().translation;
+    assert_eq!(shown, at.as_vec3(), "no drift while paused");
+    app.world_mut()
+        .resource_mut::<SpherePhysicsClock>()
+        .step_once();
+    for _ in 0..5 {
+        app.update();
+    }
+    assert_eq!(
+        app.world().resource::<SpherePhysicsDiagnostics>().steps,
+        steps + 1
+    );
+}
+
+#[test]
+fn the_same_app_twice_is_bit_identical() {
+    let run = || {
+        let mut app = app(SpherePhysicsPlugin::default()
+            .gravity(DVec3::NEG_Y * 9.81)
+            .restitution(0.8));
+        app.world_mut().spawn((
+            SphereBody::new(5.0),
+            SpherePosition(DVec3::new(0.0, -5.0, 0.0)),
+            FixedSphere,
+        ));
+        let balls: Vec<Entity> = (0..60)
+            .map(|i| {
+                let p = DVec3::new(
+                    (i % 6) as f64 * 0.3,
+                    1.0 + (i / 6) as f64 * 0.3,
+                    (i % 5) as f64 * 0.1,
+                );
+                app.world_mut()
+                    .spawn((
+                        SphereBody::new(0.1),
+                        SpherePosition(p),
+                        Density(1.0 + (i % 3) as f64),
+                    ))
+                    .id()
+            })
+            .collect();
+        run_steps(&mut app, 120);
+        balls
+            .iter()
+            .map(|&e| (position(&app, e).to_array(), velocity(&app, e).to_array()))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(run(), run());
+}

@@ -108,3 +108,7 @@ pub struct RejectedSphere {
     /// The description that was refused (tried again only once it changes).
     pub(crate) desc: sphere_physics::SphereDesc,
 }
+
+/// The core body of a sphere in the simulation, put on it by the plugin (read-only for games).
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SphereHandle(pub sphere_physics::BodyId);

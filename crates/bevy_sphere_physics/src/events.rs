@@ -39,6 +39,8 @@ pub struct SphereHit {
     pub normal: DVec3,
     /// Impulse transferred (≥ 0).
     pub impulse: f64,
+    /// A resting contact (restitution 0), not an impact.
+    pub resting: bool,
 }
 
 /// A sphere left out of the simulation because a component is invalid: which entity, which

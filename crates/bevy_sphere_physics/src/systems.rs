@@ -36,6 +36,7 @@ type SphereQuery<'a> = (
     Option<&'a Tethered>,
     Option<&'a RejectedSphere>,
     Option<&'a Name>,
+    Option<&'a SphereHandle>,
 );
 
 fn describe(item: &SphereQueryItem, options: &PluginOptions) -> SphereDesc {
@@ -52,6 +53,7 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions) -> SphereDesc {
         tether,
         _,
         name,
+        _,
     ) = item;
     SphereDesc {
         name: Some(match name {
@@ -77,7 +79,8 @@ type SphereQueryItem<'a> = <SphereQuery<'a> as bevy::ecs::query::QueryData>::Ite
 /// Whether the body still matches its components (exactly: the plugin writes the core's own
 /// values back, so any difference is a change made by the game).
 fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
-    let (_, sphere, _, position, velocity, density, restitution, force, fixed, tether, _, _) = item;
+    let (_, sphere, _, position, velocity, density, restitution, force, fixed, tether, _, _, _) =
+        item;
     position.is_none_or(|p| p.0 == body.position())
         && velocity.0 == body.velocity()
         && sphere.radius == body.radius()
@@ -119,7 +122,13 @@ pub(crate) fn prepare(
     let mut new = Vec::new();
     for item in &spheres {
         let entity = item.0;
-        match physics.bodies.get(&entity).copied() {
+        // The handle can outlive the body for one step after the entity was removed and
+        // re-added: trust the map.
+        let id = item
+            .12
+            .map(|h| h.0)
+            .filter(|id| physics.bodies.get(&entity) == Some(id));
+        match id.or_else(|| physics.bodies.get(&entity).copied()) {
             Some(id) => {
                 let body = physics.world.body(id).expect("registered bodies exist");
                 if matches(body, &item, &options) {
@@ -130,6 +139,7 @@ pub(crate) fn prepare(
                     physics.world.remove_body(id);
                     physics.bodies.remove(&entity);
                     physics.entities[id.index()] = None;
+                    commands.entity(entity).remove::<SphereHandle>();
                     if let sphere_physics::WorldError::Body(error) = error {
                         reject(&mut commands, entity, desc, error);
                     }
@@ -161,6 +171,7 @@ pub(crate) fn prepare(
                 e.insert((
                     SpherePosition(desc.position),
                     PreviousSpherePosition(desc.position),
+                    SphereHandle(id),
                 ));
                 if item.10.is_some() {
                     e.remove::<RejectedSphere>();
@@ -206,14 +217,14 @@ pub(crate) fn writeback(
     physics: Res<SpherePhysicsWorld>,
     stepped: Res<Stepped>,
     mut spheres: Query<(
-        Entity,
+        &SphereHandle,
         &mut SpherePosition,
         &mut PreviousSpherePosition,
         &mut SphereVelocity,
     )>,
 ) {
-    for (entity, mut position, mut previous, mut velocity) in &mut spheres {
-        let Some(body) = physics.body(entity).and_then(|id| physics.world.body(id)) else {
+    for (handle, mut position, mut previous, mut velocity) in &mut spheres {
+        let Some(body) = physics.world.body(handle.0) else {
             continue;
         };
         previous.0 = position.0;
@@ -255,6 +266,7 @@ pub(crate) fn notify(
                 time: c.time,
                 normal,
                 impulse: c.impulse,
+                resting: c.resting,
             });
         }
     }

@@ -234,6 +234,10 @@ impl World {
     }
 
     fn index(&self, id: BodyId) -> Result<usize, WorldError> {
+        // Until a body is removed, a body's index is its id: no search.
+        if self.bodies.get(id.index()).is_some_and(|b| b.id == id) {
+            return Ok(id.index());
+        }
         self.bodies
             .binary_search_by_key(&id, |b| b.id)
             .map_err(|_| WorldError::UnknownBody(id))

@@ -1,7 +1,6 @@
 //! Resources: the core world, the physics clock (pause, single step) and diagnostics.
 
-use std::collections::HashMap;
-
+use bevy::ecs::entity::EntityHashMap;
 use bevy::prelude::*;
 use sphere_physics::{BodyId, StepStats, World};
 
@@ -11,7 +10,7 @@ use sphere_physics::{BodyId, StepStats, World};
 pub struct SpherePhysicsWorld {
     /// The core world.
     pub world: World,
-    pub(crate) bodies: HashMap<Entity, BodyId>,
+    pub(crate) bodies: EntityHashMap<BodyId>,
     pub(crate) entities: Vec<Option<Entity>>,
 }
 
@@ -19,7 +18,7 @@ impl SpherePhysicsWorld {
     pub(crate) fn new(world: World) -> Self {
         Self {
             world,
-            bodies: HashMap::new(),
+            bodies: EntityHashMap::default(),
             entities: Vec::new(),
         }
     }

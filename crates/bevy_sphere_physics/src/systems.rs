@@ -127,7 +127,7 @@ pub(crate) fn prepare(
         let id = item
             .12
             .map(|h| h.0)
-            .filter(|id| physics.bodies.get(&entity) == Some(id));
+            .filter(|id| physics.entities.get(id.index()) == Some(&Some(entity)));
         match id.or_else(|| physics.bodies.get(&entity).copied()) {
             Some(id) => {
                 let body = physics.world.body(id).expect("registered bodies exist");

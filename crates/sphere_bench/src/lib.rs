@@ -2,9 +2,11 @@
 //! stepping, and (with the `rapier` feature) the same scenes stepped by rapier3d 0.36.
 #![warn(missing_docs)]
 
+pub mod accuracy;
 #[cfg(feature = "rapier")]
 pub mod rapier_peer;
 pub mod scenes;
+pub mod svg;
 
 use std::time::Instant;
 

@@ -89,7 +89,17 @@ pub trait Scenario {
     /// Simulated seconds to run.
     fn duration(&self) -> f64;
     /// Steps `engine` for `steps` steps of `dt` and returns the error.
-    fn run(&self, engine: &mut dyn Engine, dt: f64, steps: u64) -> f64;
+    fn run(&self, engine: &mut dyn Engine, dt: f64, steps: u64) -> f64 {
+        self.run_with_extra(engine, dt, steps).0
+    }
+    /// Like [`Scenario::run`], with the scenario's second measure if it has one.
+    fn run_with_extra(&self, engine: &mut dyn Engine, dt: f64, steps: u64) -> (f64, Option<f64>) {
+        (self.run(engine, dt, steps), None)
+    }
+    /// What the second measure is, if any.
+    fn extra_measure(&self) -> Option<&'static str> {
+        None
+    }
     /// Whether the scene uses tethers (which the rapier peer does not model).
     fn tethered(&self) -> bool {
         false
@@ -256,18 +266,24 @@ impl Scenario for Bounce {
     fn duration(&self) -> f64 {
         12.0
     }
-    fn run(&self, engine: &mut dyn Engine, dt: f64, steps: u64) -> f64 {
+    fn extra_measure(&self) -> Option<&'static str> {
+        Some("largest overlap with the floor (m)")
+    }
+    fn run_with_extra(&self, engine: &mut dyn Engine, dt: f64, steps: u64) -> (f64, Option<f64>) {
         let t1 = (2.0 / 9.81f64).sqrt();
         let zeno = t1 * 1.9 / 0.1;
         // At rest: after the last step on which it moved faster than 1 mm/s.
         let mut last_moving = 0.0;
+        let mut overlap = 0.0f64;
+        let floor = DVec3::new(0.0, -1000.0, 0.0);
         for k in 1..=steps {
             engine.step();
             if engine.velocities()[0].length() > 1e-3 {
                 last_moving = k as f64 * dt;
             }
+            overlap = overlap.max(1000.1 - (engine.positions()[0] - floor).length());
         }
-        (last_moving - zeno).abs() / zeno
+        ((last_moving - zeno).abs() / zeno, Some(overlap))
     }
 }
 
@@ -307,6 +323,48 @@ impl Scenario for Gas {
             engine.step();
         }
         (energy(&engine.velocities()) - before).abs() / before
+    }
+}
+
+/// 1000 spheres at 1 m/s in random directions with no walls: they collide, then fly apart.
+/// Momentum has nothing to leave through: its drift over 10 s, relative to Σ m|v|.
+pub struct GasCloud;
+
+impl Scenario for GasCloud {
+    fn name(&self) -> &'static str {
+        "open gas cloud of 1000"
+    }
+    fn error_measure(&self) -> &'static str {
+        "momentum drift over 10 s, relative to the sum of m|v|"
+    }
+    fn extra_measure(&self) -> Option<&'static str> {
+        Some("relative kinetic energy drift")
+    }
+    fn scene(&self) -> Scene {
+        let scene = SceneDesc::from_ron(
+            "(name: \"cloud\", generate: [Gas(count: 1000, seed: 9, min: (-1.2, -1.2, -1.2),
+              max: (1.2, 1.2, 1.2), radius: 0.05, speed: 1.0, walls: false)])",
+        )
+        .expect("valid scene");
+        Scene::new(DVec3::ZERO, scene.sphere_descs().expect("valid scene"))
+    }
+    fn duration(&self) -> f64 {
+        10.0
+    }
+    fn run_with_extra(&self, engine: &mut dyn Engine, _dt: f64, steps: u64) -> (f64, Option<f64>) {
+        // Equal masses: compare velocity sums.
+        let momentum = |v: &[DVec3]| v.iter().copied().sum::<DVec3>();
+        let energy = |v: &[DVec3]| v.iter().map(|v| v.length_squared()).sum::<f64>();
+        let v0 = engine.velocities();
+        let scale: f64 = v0.iter().map(|v| v.length()).sum();
+        for _ in 0..steps {
+            engine.step();
+        }
+        let v = engine.velocities();
+        (
+            (momentum(&v) - momentum(&v0)).length() / scale,
+            Some((energy(&v) - energy(&v0)).abs() / energy(&v0)),
+        )
     }
 }
 
@@ -390,6 +448,7 @@ pub fn scenarios() -> Vec<Box<dyn Scenario>> {
         Box::new(LightOnHeavy),
         Box::new(Bounce),
         Box::new(Gas),
+        Box::new(GasCloud),
         Box::new(TetheredCradle),
     ]
 }

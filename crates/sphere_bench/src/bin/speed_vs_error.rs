@@ -23,6 +23,7 @@ struct Point {
     engine: String,
     hz: u32,
     error: f64,
+    extra: Option<f64>,
     cost: f64,
     ns_per_sphere_step: f64,
 }
@@ -32,23 +33,23 @@ fn measure(
     make: &mut dyn FnMut(&Scene, f64) -> Box<dyn Engine>,
     hz: u32,
     runs: usize,
-) -> (f64, f64, f64) {
+) -> (f64, Option<f64>, f64, f64) {
     let scene = scenario.scene();
     let dt = 1.0 / f64::from(hz);
     let steps = (scenario.duration() * f64::from(hz)).round() as u64;
     let mut times = Vec::new();
-    let mut error = 0.0;
+    let (mut error, mut extra) = (0.0, None);
     for _ in 0..runs {
         let mut engine = make(&scene, dt);
         let started = Instant::now();
-        error = scenario.run(engine.as_mut(), dt, steps);
+        (error, extra) = scenario.run_with_extra(engine.as_mut(), dt, steps);
         times.push(started.elapsed().as_secs_f64());
     }
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
     let cost = median / scenario.duration();
     let ns = median * 1e9 / (steps as f64 * scene.spheres.len() as f64);
-    (error, cost, ns)
+    (error, extra, cost, ns)
 }
 
 #[cfg(feature = "rapier")]
@@ -144,11 +145,12 @@ fn main() {
                 let mut make = |scene: &Scene, dt: f64| -> Box<dyn Engine> {
                     Box::new(Ours::new(scene, *method, dt))
                 };
-                let (error, cost, ns) = measure(scenario.as_ref(), &mut make, hz, runs);
+                let (error, extra, cost, ns) = measure(scenario.as_ref(), &mut make, hz, runs);
                 points.push(Point {
                     engine: name.clone(),
                     hz,
                     error,
+                    extra,
                     cost,
                     ns_per_sphere_step: ns,
                 });
@@ -161,27 +163,37 @@ fn main() {
                     let mut make = |scene: &Scene, dt: f64| -> Box<dyn Engine> {
                         Box::new(peer::make(scene, dt, iterations))
                     };
-                    let (error, cost, ns) = measure(scenario.as_ref(), &mut make, hz, runs);
+                    let (error, extra, cost, ns) = measure(scenario.as_ref(), &mut make, hz, runs);
                     points.push(Point {
                         engine: format!("rapier, {iterations} iterations"),
                         hz,
                         error,
+                        extra,
                         cost,
                         ns_per_sphere_step: ns,
                     });
                 }
             }
         }
+        let extra_name = scenario.extra_measure();
         let _ = writeln!(
             md,
-            "## {}\n\nError: {}.\n\n| engine | steps/s | error | wall s per sim s | ns/sphere/step |\n|---|---|---|---|---|",
+            "## {}\n\nError: {}.{}\n\n| engine | steps/s | error |{} wall s per sim s | ns/sphere/step |\n|---|---|---|{}---|---|",
             scenario.name(),
-            scenario.error_measure()
+            scenario.error_measure(),
+            extra_name.map_or(String::new(), |e| format!(" Also: {e}.")),
+            extra_name.map_or("", |_| " also |"),
+            extra_name.map_or("", |_| "---|"),
         );
         for p in &points {
+            let extra = match (extra_name, p.extra) {
+                (Some(_), Some(x)) => format!(" {x:.3e} |"),
+                (Some(_), None) => " - |".to_owned(),
+                _ => String::new(),
+            };
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.3e} | {:.3e} | {:.0} |",
+                "| {} | {} | {:.3e} |{extra} {:.3e} | {:.0} |",
                 p.engine, p.hz, p.error, p.cost, p.ns_per_sphere_step
             );
         }

@@ -8,7 +8,7 @@ use sphere_physics::{IntegratorKind, Settings, ToiMethod, Tolerance, World};
 use crate::components::*;
 use crate::events::{SphereCollision, SphereRejected};
 use crate::resources::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
-use crate::systems::{self, PluginOptions, Stepped};
+use crate::systems::{self, PluginOptions, RemovedSpheres, Stepped};
 
 /// The plugin's stages in [`FixedUpdate`], chained in this order. Put a game's systems
 /// `.before(..)` or `.after(..)` any of them, e.g. apply thrust before `Prepare` or read
@@ -115,6 +115,8 @@ impl Plugin for SpherePhysicsPlugin {
             .init_resource::<SpherePhysicsClock>()
             .init_resource::<SpherePhysicsDiagnostics>()
             .init_resource::<Stepped>()
+            .init_resource::<RemovedSpheres>()
+            .add_observer(systems::record_removal)
             .add_message::<SphereCollision>()
             .add_message::<SphereRejected>()
             .register_type::<SphereBody>()

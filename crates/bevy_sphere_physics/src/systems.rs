@@ -18,6 +18,16 @@ pub(crate) struct PluginOptions {
     pub interpolate: bool,
 }
 
+/// Spheres whose `SphereBody` was removed (or that were despawned) since the last `Prepare`,
+/// recorded by an observer so none is missed on frames without a fixed step.
+#[derive(Resource, Debug, Default)]
+pub(crate) struct RemovedSpheres(pub Vec<Entity>);
+
+/// Records a removed sphere for the next `Prepare`.
+pub(crate) fn record_removal(removed: On<Remove, SphereBody>, mut queue: ResMut<RemovedSpheres>) {
+    queue.0.push(removed.entity);
+}
+
 /// Whether the last fixed step stepped the physics (false while paused).
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Stepped(pub bool);
@@ -96,13 +106,13 @@ fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool
 pub(crate) fn prepare(
     mut commands: Commands,
     mut physics: ResMut<SpherePhysicsWorld>,
-    mut removed: RemovedComponents<SphereBody>,
+    mut removed: ResMut<RemovedSpheres>,
     spheres: Query<SphereQuery>,
     options: Res<PluginOptions>,
     mut rejected: MessageWriter<SphereRejected>,
 ) {
     let physics = &mut *physics;
-    for entity in removed.read() {
+    for entity in removed.0.drain(..) {
         if let Some(id) = physics.bodies.remove(&entity) {
             physics.world.remove_body(id);
             physics.entities[id.index()] = None;
@@ -130,7 +140,13 @@ pub(crate) fn prepare(
             .filter(|id| physics.entities.get(id.index()) == Some(&Some(entity)));
         match id.or_else(|| physics.bodies.get(&entity).copied()) {
             Some(id) => {
-                let body = physics.world.body(id).expect("registered bodies exist");
+                let Some(body) = physics.world.body(id) else {
+                    // Removed from the core by the game: register it anew.
+                    physics.bodies.remove(&entity);
+                    physics.entities[id.index()] = None;
+                    new.push(entity);
+                    continue;
+                };
                 if matches(body, &item, &options) {
                     continue;
                 }
@@ -277,12 +293,15 @@ pub(crate) fn notify(
 pub(crate) fn interpolate(
     time: Res<Time<Fixed>>,
     options: Res<PluginOptions>,
-    mut spheres: Query<(
-        &SpherePosition,
-        &PreviousSpherePosition,
-        &mut Transform,
-        Has<NoInterpolation>,
-    )>,
+    mut spheres: Query<
+        (
+            &SpherePosition,
+            &PreviousSpherePosition,
+            &mut Transform,
+            Has<NoInterpolation>,
+        ),
+        With<SphereHandle>,
+    >,
 ) {
     let fraction = time.overstep_fraction_f64();
     for (position, previous, mut transform, opted_out) in &mut spheres {

@@ -380,3 +380,55 @@ fn the_same_app_twice_is_bit_identical() {
     };
     assert_eq!(run(), run());
 }
+
+/// Review finding: a sphere despawned on a frame without a fixed step (a fast display with a
+/// slower fixed clock) must still leave the simulation.
+#[test]
+fn regression_despawn_between_fixed_steps_is_not_missed() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let keep = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(-5.0, 0.0, 0.0)),
+        ))
+        .id();
+    let gone = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(5.0, 0.0, 0.0)),
+        ))
+        .id();
+    run_steps(&mut app, 2);
+    // Frames of a quarter step: three frames in four run no fixed step.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP / 4));
+    app.update();
+    app.world_mut().despawn(gone);
+    for _ in 0..12 {
+        app.update();
+    }
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert_eq!(physics.world.len(), 1);
+    assert!(physics.body(gone).is_none());
+    assert!(physics.body(keep).is_some());
+}
+
+/// Review finding: a game that removes a body from the core directly does not make the plugin
+/// panic; the sphere is registered again.
+#[test]
+fn regression_body_removed_from_the_core_is_registered_again() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 2);
+    let mut physics = app.world_mut().resource_mut::<SpherePhysicsWorld>();
+    let id = physics.body(ball).unwrap();
+    physics.world.remove_body(id);
+    run_steps(&mut app, 2);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert_eq!(physics.world.len(), 1);
+    assert_ne!(physics.body(ball), Some(id));
+}

@@ -5,8 +5,9 @@ use std::fmt;
 
 use glam::DVec3;
 
-/// Stable identifier of a body in a [`World`](crate::World). Ids are never reused, and ties
-/// between simultaneous events are broken by them, so results never depend on hash order.
+/// Stable identifier of a body in a [`World`](crate::World). Ids are never reused. Ties between
+/// simultaneous events are broken by a deterministic order (ids in small scenes, the broad
+/// phase's spatial order in large ones), so results never depend on hash order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct BodyId(pub(crate) u32);
 
@@ -55,7 +56,10 @@ pub struct SphereDesc {
 /// sphere's velocity) the drift over the rest of the step is bent so that it ends exactly at the
 /// string's length (the SHAKE correction), and the outward radial velocity is removed at the
 /// end. With the [`Leapfrog`](crate::Leapfrog) integrator this is symplectic: a pendulum's energy
-/// oscillates within a relative `~(ω·dt)²/8` and does not drift.
+/// oscillates within a relative `~(ω·dt)²/8` and does not drift. A string that goes from slack
+/// to taut within a step is approximated: the whole step's drift is bent, so a collision in that
+/// step is timed on the bent drift (off by at most a fraction of the step), though resolved with
+/// the sphere's free velocity.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tether {

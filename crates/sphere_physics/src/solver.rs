@@ -1,7 +1,8 @@
 //! One step: kick, then drift with collisions resolved one at a time in time order, then kick.
 //!
-//! Every pair's first impact in the step is put in a priority queue keyed by (time, lower id,
-//! higher id). The earliest is resolved: both bodies are moved to that instant, an impulse is
+//! Every pair's first impact in the step is put in a priority queue keyed by (time, lower
+//! index, higher index), indices being body ids in small scenes and the broad phase's spatial
+//! order in large ones: deterministic either way. The earliest is resolved: both bodies are moved to that instant, an impulse is
 //! applied, and only the pairs involving those two bodies are tested again for the rest of the
 //! step. Touching chains therefore propagate one contact at a time, exactly as a sequence of
 //! collisions separated by vanishing gaps would: one ball in, one ball out.
@@ -24,8 +25,12 @@ struct Segment {
     kick_after: DVec3,
     acceleration: DVec3,
     tether: Option<Tether>,
-    /// The string bent this segment's drift: it is at its length.
+    /// The string bent this segment's drift: it reaches its length by the end of the step.
     taut: bool,
+    /// The velocity before the bend (what the sphere moves at while the string is slack).
+    free_velocity: DVec3,
+    /// How far inside the string's length the bent drift dips (its sagitta).
+    sag: f64,
     inverse_mass: f64,
     radius: f64,
     restitution: f64,
@@ -113,6 +118,7 @@ pub(crate) struct Solver {
     ranges: Vec<std::ops::Range<usize>>,
     touched: Vec<u32>,
     local_resting: Vec<bool>,
+    local_taut: Vec<bool>,
     local_bodies: Vec<u32>,
     local_inverse_masses: Vec<f64>,
     local_velocities: Vec<DVec3>,
@@ -203,9 +209,10 @@ impl Solver {
             };
             let tether = body.tether();
             let mut velocity = body.velocity() + kicks.0;
-            let mut taut = false;
+            let free_velocity = velocity;
+            let (mut taut, mut sag) = (false, 0.0);
             if let Some(tether) = tether {
-                (velocity, taut) = chord(body.position(), velocity, tether, dt);
+                (velocity, taut, sag) = chord(body.position(), velocity, tether, dt);
             }
             let segment = Segment {
                 t0: 0.0,
@@ -215,6 +222,8 @@ impl Solver {
                 acceleration,
                 tether,
                 taut,
+                free_velocity,
+                sag,
                 inverse_mass: body.inverse_mass(),
                 radius: body.radius(),
                 restitution: body.restitution(),
@@ -462,26 +471,40 @@ impl Solver {
             let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
             stats.collisions += 1;
             stats.resting_contacts += 1;
-            self.collisions.push(Collision {
-                a: bodies[self.order[a] as usize].id(),
-                b: bodies[self.order[b] as usize].id(),
-                time: ctx.start_time,
-                normal: c.normal,
-                point: sa.position + c.normal * sa.radius,
-                impulse: c.impulse,
-                resting: true,
-            });
+            self.collisions.push(collision(
+                bodies[self.order[a] as usize].id(),
+                bodies[self.order[b] as usize].id(),
+                ctx.start_time,
+                c.normal,
+                sa.position + c.normal * sa.radius,
+                c.impulse,
+                true,
+            ));
         }
         self.resting = resting;
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
             let segment = &mut self.segments[k];
             if let Some(tether) = segment.tether {
-                (segment.velocity, segment.taut) =
+                segment.free_velocity = segment.velocity;
+                (segment.velocity, segment.taut, segment.sag) =
                     chord(segment.position, segment.velocity, tether, ctx.dt);
             }
             segment.version += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
+        }
+    }
+
+    /// Whether segment `k`'s string is at its length at time `t`: its drift was bent, and at
+    /// `t` the sphere is no farther inside the length than the bent drift can dip.
+    fn taut_at(&self, k: usize, t: f64) -> bool {
+        let segment = &self.segments[k];
+        match (segment.tether, segment.taut) {
+            (Some(tether), true) => {
+                let distance = (segment.position_at(t) - tether.anchor).length();
+                tether.length - distance <= 1.5 * segment.sag + 1e-12 * tether.length
+            }
+            _ => false,
         }
     }
 
@@ -511,12 +534,21 @@ impl Solver {
         let local = |bodies: &[u32], k: u32| bodies.iter().position(|&b| b == k).unwrap_or(0);
         self.local_inverse_masses.clear();
         self.local_velocities.clear();
-        for &k in &self.local_bodies {
-            let segment = &mut self.segments[k as usize];
+        self.local_taut.clear();
+        for i in 0..self.local_bodies.len() {
+            let k = self.local_bodies[i] as usize;
+            let taut = self.taut_at(k, t);
+            self.local_taut.push(taut);
+            let segment = &mut self.segments[k];
             segment.advance_to(t);
             self.local_inverse_masses.push(segment.inverse_mass);
-            let mut velocity = segment.velocity;
-            if let (Some(tether), true) = (segment.tether, segment.taut) {
+            let mut velocity = if segment.taut && !taut {
+                // Bent for later, slack now: it moves freely.
+                segment.free_velocity
+            } else {
+                segment.velocity
+            };
+            if let (Some(tether), true) = (segment.tether, taut) {
                 // The drift is a chord of the string's sphere; the sphere itself is on that
                 // sphere, moving tangent to it. Put it there (a move of at most the chord's
                 // sagitta, ~(v·dt)²/8L) and drop the drift's radial part (the string's pull).
@@ -560,7 +592,7 @@ impl Solver {
         // Taut strings of the bodies involved, each to a virtual fixed anchor.
         for (local, &k) in self.local_bodies.iter().enumerate() {
             let segment = &self.segments[k as usize];
-            if let (Some(tether), true) = (segment.tether, segment.taut) {
+            if let (Some(tether), true) = (segment.tether, self.local_taut[local]) {
                 let r = segment.position - tether.anchor;
                 let distance = r.length();
                 if distance > 0.0 {
@@ -589,7 +621,8 @@ impl Solver {
             }
             segment.velocity = velocity;
             if let Some(tether) = segment.tether {
-                (segment.velocity, segment.taut) =
+                segment.free_velocity = velocity;
+                (segment.velocity, segment.taut, segment.sag) =
                     chord(segment.position, velocity, tether, ctx.dt - t);
             }
             segment.version += 1;
@@ -608,15 +641,15 @@ impl Solver {
             stats.collisions += 1;
             stats.resting_contacts += u32::from(resting);
             let sa = &self.segments[a];
-            self.collisions.push(Collision {
-                a: bodies[self.order[a] as usize].id(),
-                b: bodies[self.order[b] as usize].id(),
-                time: ctx.start_time + t,
-                normal: c.normal,
-                point: sa.position + c.normal * sa.radius,
+            self.collisions.push(collision(
+                bodies[self.order[a] as usize].id(),
+                bodies[self.order[b] as usize].id(),
+                ctx.start_time + t,
+                c.normal,
+                sa.position + c.normal * sa.radius,
                 impulse,
                 resting,
-            });
+            ));
         }
     }
 
@@ -678,13 +711,19 @@ impl Solver {
     ) {
         let (a, b) = (event.a as usize, event.b as usize);
         let t = event.time;
-        if self.segments[a].taut || self.segments[b].taut {
+        if self.taut_at(a, t) || self.taut_at(b, t) {
             // A taut string takes part in the impact: solve it with the contact.
             self.resolve_group(std::slice::from_ref(event), t, bodies, ctx, stats);
             return;
         }
-        self.segments[a].advance_to(t);
-        self.segments[b].advance_to(t);
+        for k in [a, b] {
+            let segment = &mut self.segments[k];
+            segment.advance_to(t);
+            if segment.taut {
+                // Bent for later, slack now: it moves freely.
+                segment.velocity = segment.free_velocity;
+            }
+        }
         let (sa, sb) = (self.segments[a], self.segments[b]);
         let d = sb.position - sa.position;
         let distance = d.length();
@@ -718,7 +757,8 @@ impl Solver {
             }
             segment.velocity = velocity;
             if let Some(tether) = segment.tether {
-                (segment.velocity, segment.taut) =
+                segment.free_velocity = velocity;
+                (segment.velocity, segment.taut, segment.sag) =
                     chord(segment.position, velocity, tether, ctx.dt - t);
             }
             segment.version += 1;
@@ -726,15 +766,15 @@ impl Solver {
         }
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);
-        self.collisions.push(Collision {
-            a: bodies[self.order[a] as usize].id(),
-            b: bodies[self.order[b] as usize].id(),
-            time: ctx.start_time + t,
+        self.collisions.push(collision(
+            bodies[self.order[a] as usize].id(),
+            bodies[self.order[b] as usize].id(),
+            ctx.start_time + t,
             normal,
-            point: sa.position + normal * sa.radius,
-            impulse: r.impulse,
+            sa.position + normal * sa.radius,
+            r.impulse,
             resting,
-        });
+        ));
     }
 }
 
@@ -771,16 +811,17 @@ fn pressing(a: &Segment, b: &Segment, normal: DVec3) -> f64 {
 /// The velocity that carries a tethered sphere from `position` over `tau` to where its string
 /// allows (the SHAKE correction): unchanged while the string stays slack, otherwise bent along
 /// the string's current direction so the drift ends exactly at the string's length.
-/// Also says whether the string is taut (bent the drift).
-fn chord(position: DVec3, velocity: DVec3, tether: Tether, tau: f64) -> (DVec3, bool) {
+/// Also says whether the string bent the drift (it will be taut by the end), and how far inside
+/// the string's length the straight drift dips on the way (its sagitta, `c²/8L`).
+fn chord(position: DVec3, velocity: DVec3, tether: Tether, tau: f64) -> (DVec3, bool, f64) {
     let r = position - tether.anchor;
     if tau <= 0.0 {
-        return (velocity, r.length() >= tether.length * (1.0 - 1e-9));
+        return (velocity, r.length() >= tether.length * (1.0 - 1e-9), 0.0);
     }
     let q = r + velocity * tau;
     let (length, qq, rr) = (tether.length, q.length_squared(), r.length_squared());
     if qq <= length * length || rr == 0.0 {
-        return (velocity, false);
+        return (velocity, false, 0.0);
     }
     // |q - s r| = L, smaller root, written without cancellation.
     let qr = q.dot(r);
@@ -791,7 +832,11 @@ fn chord(position: DVec3, velocity: DVec3, tether: Tether, tau: f64) -> (DVec3, 
     } else {
         q * (length / q.length())
     };
-    ((end - r) / tau, true)
+    let chord_length = (end - r).length();
+    // A chord between two points at the string's length dips this far inside it; a sphere
+    // farther inside than that is not on its string (yet).
+    let sag = chord_length * chord_length / (8.0 * length);
+    ((end - r) / tau, true, sag)
 }
 
 /// At the end of a step: a sphere at (or, after rounding, past) its string's length is put back
@@ -815,6 +860,34 @@ fn taut(position: DVec3, velocity: DVec3, tether: Tether) -> (DVec3, DVec3) {
         velocity
     };
     (position, velocity)
+}
+
+/// A collision record with `a` the body of the smaller id: swapping the pair turns the normal
+/// round, and the contact point is the same point.
+#[allow(clippy::too_many_arguments)]
+fn collision(
+    a: crate::BodyId,
+    b: crate::BodyId,
+    time: f64,
+    normal: DVec3,
+    point: DVec3,
+    impulse: f64,
+    resting: bool,
+) -> Collision {
+    let (a, b, normal) = if a <= b {
+        (a, b, normal)
+    } else {
+        (b, a, -normal)
+    };
+    Collision {
+        a,
+        b,
+        time,
+        normal,
+        point,
+        impulse,
+        resting,
+    }
 }
 
 /// How far two bodies overlap (negative when apart).

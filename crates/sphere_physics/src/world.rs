@@ -25,12 +25,14 @@ pub struct Settings {
     pub tolerance: Tolerance,
     /// How two bodies' restitutions combine.
     pub restitution_combine: CombineRule,
-    /// A collision whose approach speed is at most this many steps' worth of the scene's largest
-    /// acceleration (gravity plus applied force over mass, over the dynamic bodies) is a resting
-    /// contact and is resolved with restitution 0: a ball at rest on another, or in a pile,
-    /// stays at rest instead of jittering, and a bouncing ball comes to rest instead of bouncing
-    /// ever lower forever. At 60 Hz under Earth gravity that is 0.25 m/s. Without gravity or
-    /// forces no collision is resting. Default 1.5; 0 disables it.
+    /// A collision whose approach speed is at most this many steps' worth of the acceleration
+    /// pressing the pair together (the larger component of either body's own acceleration,
+    /// gravity plus applied force over mass, along their line of centres) is a resting contact
+    /// and is resolved with restitution 0: a ball at rest on another, or in a pile, stays at
+    /// rest instead of jittering, and a bouncing ball comes to rest instead of bouncing ever
+    /// lower forever. A ball on a floor under Earth gravity at 60 Hz: 0.25 m/s. Balls side by
+    /// side under gravity (a cradle) do not press, so they never rest on each other. Default
+    /// 1.5; 0 disables it.
     pub resting_factor: f64,
     /// Within a step, two touching bodies closing slower than this fraction of the resting
     /// speed (see `resting_factor`) are left to creep into each other until the next step's
@@ -229,7 +231,12 @@ impl World {
             }
             .into());
         }
-        set(&mut self.bodies[index].desc, value);
+        // Validate the whole description (a position beyond the body's string is invalid).
+        let body = &self.bodies[index];
+        let mut desc = body.desc.clone();
+        set(&mut desc, value);
+        desc.validate(|| label(body.name(), id))?;
+        self.bodies[index].desc = desc;
         Ok(())
     }
 

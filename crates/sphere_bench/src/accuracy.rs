@@ -429,12 +429,17 @@ pub fn tunnelling_speed(make: &mut dyn FnMut(&Scene) -> Box<dyn Engine>, dt: f64
             ],
         );
         let mut engine = make(&scene);
-        let steps = ((2.0 / speed) / dt).ceil() as u64 + 2;
-        for _ in 0..steps {
+        // Until it bounces back or is past the target (at most ten times the time it needs).
+        let limit = ((20.0 / speed) / dt).ceil() as u64 + 20;
+        for _ in 0..limit {
             engine.step();
-        }
-        if engine.velocities()[0].x > 0.0 {
-            return Some(speed);
+            let (p, v) = (engine.positions()[0], engine.velocities()[0]);
+            if v.x < 0.0 {
+                break;
+            }
+            if p.x > 0.02 {
+                return Some(speed);
+            }
         }
     }
     None

@@ -113,10 +113,14 @@ impl RapierWorld {
             handles.push(handle);
         }
 
+        // No speed cap: by default rapier clamps speeds to 400 length units per second (8 m/s
+        // for spheres of radius 0.01), which would slow the fast spheres of a scene rather than
+        // simulate them. Its docs: `Real::MAX` disables the cap.
         let integration_parameters = IntegrationParameters {
             dt: config.dt as Real,
             length_unit: config.length_unit as Real,
             num_solver_iterations: config.solver_iterations.max(1),
+            normalized_max_linear_velocity: Real::MAX,
             ..IntegrationParameters::default()
         };
 

@@ -74,15 +74,8 @@ pub fn measure_rapier(scene: &SceneDesc, steps: u32, dt: f64, ccd: bool) -> Meas
     let spheres: Vec<RapierSphere> = scene
         .sphere_descs()
         .expect("bench scenes are valid")
-        .into_iter()
-        .map(|d| RapierSphere {
-            position: d.position.to_array(),
-            velocity: d.velocity.to_array(),
-            radius: d.radius,
-            density: d.density,
-            restitution: d.restitution,
-            fixed: d.fixed,
-        })
+        .iter()
+        .map(RapierSphere::from)
         .collect();
     let config = RapierConfig {
         gravity: scene.gravity,

@@ -27,6 +27,19 @@ pub struct RapierSphere {
     pub fixed: bool,
 }
 
+impl From<&sphere_physics::SphereDesc> for RapierSphere {
+    fn from(d: &sphere_physics::SphereDesc) -> Self {
+        Self {
+            position: d.position.to_array(),
+            velocity: d.velocity.to_array(),
+            radius: d.radius,
+            density: d.density,
+            restitution: d.restitution,
+            fixed: d.fixed,
+        }
+    }
+}
+
 /// World-wide settings for the rapier peer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RapierConfig {

@@ -495,6 +495,44 @@ impl Solver {
         }
     }
 
+    /// A contact's restitution, and whether it is a resting contact (approaching no faster
+    /// than the resting speed: restitution 0).
+    fn restitution(
+        &self,
+        sa: &Segment,
+        sb: &Segment,
+        normal: DVec3,
+        settings: &Settings,
+    ) -> (f64, bool) {
+        let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
+        if approach_speed <= self.resting_scale * pressing(sa, sb, normal) {
+            (0.0, true)
+        } else {
+            let combined = settings
+                .restitution_combine
+                .combine(sa.restitution, sb.restitution);
+            (combined, false)
+        }
+    }
+
+    /// Gives segment `k` its velocity after an impulse at time `t`: bent along its string if it
+    /// has one, its pending events made stale and its box regrown. Fixed segments never change,
+    /// so their other pending events stay valid.
+    fn set_velocity(&mut self, k: usize, velocity: DVec3, t: f64, ctx: &StepContext<'_>) {
+        let segment = &mut self.segments[k];
+        if segment.is_fixed() {
+            return;
+        }
+        segment.velocity = velocity;
+        if let Some(tether) = segment.tether {
+            segment.free_velocity = velocity;
+            (segment.velocity, segment.taut, segment.sag) =
+                chord(segment.position, velocity, tether, ctx.dt - t);
+        }
+        segment.version += 1;
+        self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
+    }
+
     /// Whether segment `k`'s string is at its length at time `t`: its drift was bent, and at
     /// `t` the sphere is no farther inside the length than the bent drift can dip.
     fn taut_at(&self, k: usize, t: f64) -> bool {
@@ -572,20 +610,13 @@ impl Solver {
                 continue;
             }
             let normal = d / distance;
-            let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-            let resting = approach_speed <= self.resting_scale * pressing(sa, sb, normal);
+            let (restitution, resting) = self.restitution(sa, sb, normal, settings);
             self.local_resting.push(resting);
             self.local_contacts.push(GroupContact {
                 a: local(&self.local_bodies, e.a),
                 b: local(&self.local_bodies, e.b),
                 normal,
-                restitution: if resting {
-                    0.0
-                } else {
-                    settings
-                        .restitution_combine
-                        .combine(sa.restitution, sb.restitution)
-                },
+                restitution,
                 string: false,
             });
         }
@@ -614,19 +645,9 @@ impl Solver {
             &self.local_contacts,
             &mut self.local_impulses,
         );
-        for (&k, &velocity) in self.local_bodies.iter().zip(&self.local_velocities) {
-            let segment = &mut self.segments[k as usize];
-            if segment.is_fixed() {
-                continue;
-            }
-            segment.velocity = velocity;
-            if let Some(tether) = segment.tether {
-                segment.free_velocity = velocity;
-                (segment.velocity, segment.taut, segment.sag) =
-                    chord(segment.position, velocity, tether, ctx.dt - t);
-            }
-            segment.version += 1;
-            self.boxes[k as usize] = swept_box(segment, ctx.dt, settings);
+        for i in 0..self.local_bodies.len() {
+            let (k, velocity) = (self.local_bodies[i] as usize, self.local_velocities[i]);
+            self.set_velocity(k, velocity, t, ctx);
         }
         for ((c, &impulse), &resting) in self
             .local_contacts
@@ -731,16 +752,7 @@ impl Solver {
             return;
         }
         let normal = d / distance;
-        let settings = ctx.settings;
-        let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-        let resting = approach_speed <= self.resting_scale * pressing(&sa, &sb, normal);
-        let restitution = if resting {
-            0.0
-        } else {
-            settings
-                .restitution_combine
-                .combine(sa.restitution, sb.restitution)
-        };
+        let (restitution, resting) = self.restitution(&sa, &sb, normal, ctx.settings);
         let r = resolve(
             sa.inverse_mass,
             sb.inverse_mass,
@@ -749,21 +761,8 @@ impl Solver {
             normal,
             restitution,
         );
-        for (k, velocity) in [(a, r.velocity_a), (b, r.velocity_b)] {
-            let segment = &mut self.segments[k];
-            if segment.is_fixed() {
-                // Unchanged: its other pending events stay valid.
-                continue;
-            }
-            segment.velocity = velocity;
-            if let Some(tether) = segment.tether {
-                segment.free_velocity = velocity;
-                (segment.velocity, segment.taut, segment.sag) =
-                    chord(segment.position, velocity, tether, ctx.dt - t);
-            }
-            segment.version += 1;
-            self.boxes[k] = swept_box(segment, ctx.dt, settings);
-        }
+        self.set_velocity(a, r.velocity_a, t, ctx);
+        self.set_velocity(b, r.velocity_b, t, ctx);
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);
         self.collisions.push(collision(

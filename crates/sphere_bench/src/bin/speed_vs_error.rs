@@ -73,18 +73,7 @@ mod peer {
     }
 
     pub fn make(scene: &Scene, dt: f64, iterations: usize) -> Rapier {
-        let spheres: Vec<RapierSphere> = scene
-            .spheres
-            .iter()
-            .map(|d| RapierSphere {
-                position: d.position.to_array(),
-                velocity: d.velocity.to_array(),
-                radius: d.radius,
-                density: d.density,
-                restitution: d.restitution,
-                fixed: d.fixed,
-            })
-            .collect();
+        let spheres: Vec<RapierSphere> = scene.spheres.iter().map(RapierSphere::from).collect();
         let smallest = scene
             .spheres
             .iter()

@@ -37,7 +37,9 @@ mod systems;
 pub use components::*;
 pub use events::{SphereCollision, SphereHit, SphereRejected};
 pub use plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
-pub use resources::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
+pub use resources::{
+    ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld,
+};
 pub use sphere_physics;
 
 /// Everything a game needs: `use bevy_sphere_physics::prelude::*;`.
@@ -45,6 +47,6 @@ pub mod prelude {
     pub use crate::components::*;
     pub use crate::events::{SphereCollision, SphereHit, SphereRejected};
     pub use crate::plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
-    pub use crate::resources::{SpherePhysicsClock, SpherePhysicsDiagnostics};
+    pub use crate::resources::{ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics};
     pub use bevy::math::DVec3;
 }

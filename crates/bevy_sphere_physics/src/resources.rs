@@ -85,3 +85,68 @@ pub struct SpherePhysicsDiagnostics {
     /// Spheres in the simulation.
     pub bodies: usize,
 }
+
+/// A command that empties the simulation and restarts its clock: the core world is replaced by
+/// a new one with `settings`, diagnostics start again from zero, and spheres still spawned
+/// join the new world at the next `Prepare`. Scene switches use it, so a new scene starts at
+/// simulated time 0 with its own gravity, method and integrator.
+///
+/// ```
+/// # use bevy::prelude::*;
+/// # use bevy_sphere_physics::{ResetSpherePhysics, sphere_physics::Settings};
+/// fn restart(mut commands: Commands) {
+///     commands.queue(ResetSpherePhysics::new(Settings::default()));
+/// }
+/// ```
+#[derive(Clone, Debug)]
+pub struct ResetSpherePhysics {
+    /// The new world's settings.
+    pub settings: sphere_physics::Settings,
+    /// A new default restitution for spheres without [`Restitution`](crate::Restitution), or
+    /// `None` to keep the plugin's.
+    pub restitution: Option<f64>,
+}
+
+impl ResetSpherePhysics {
+    /// A reset to `settings`, keeping the default restitution.
+    pub fn new(settings: sphere_physics::Settings) -> Self {
+        Self {
+            settings,
+            restitution: None,
+        }
+    }
+
+    /// Also sets the default restitution.
+    pub fn restitution(mut self, restitution: f64) -> Self {
+        self.restitution = Some(restitution);
+        self
+    }
+}
+
+impl Command for ResetSpherePhysics {
+    type Out = ();
+
+    fn apply(self, world: &mut bevy::prelude::World) {
+        let handles: Vec<Entity> = world
+            .query_filtered::<Entity, With<crate::SphereHandle>>()
+            .iter(world)
+            .collect();
+        for entity in handles {
+            world.entity_mut(entity).remove::<crate::SphereHandle>();
+        }
+        world.insert_resource(SpherePhysicsWorld::new(World::new(self.settings)));
+        if let Some(mut removed) = world.get_resource_mut::<crate::systems::RemovedSpheres>() {
+            removed.0.clear();
+        }
+        if let Some(mut stepped) = world.get_resource_mut::<crate::systems::Stepped>() {
+            stepped.0 = false;
+        }
+        world.insert_resource(SpherePhysicsDiagnostics::default());
+        if let (Some(restitution), Some(mut options)) = (
+            self.restitution,
+            world.get_resource_mut::<crate::systems::PluginOptions>(),
+        ) {
+            options.restitution = restitution;
+        }
+    }
+}

@@ -1,0 +1,8 @@
+//! The tutorial's scene 1: spheres moving under applied forces and gravity.
+//!
+//! Keys: P pauses, N steps once while paused, R restarts, Space saves a screenshot with the
+//! simulated time on it, Enter opens the scene chooser. Drag to orbit, scroll to zoom.
+
+fn main() -> bevy::app::AppExit {
+    sphere_lab::lab_app(Some("applied_forces")).run()
+}

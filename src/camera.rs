@@ -1,0 +1,148 @@
+//! A camera that orbits a target: drag with the left mouse button (or the arrow keys while the
+//! chooser is closed) to orbit, scroll (or `+` / `-`) to zoom. Each scene is framed when it is
+//! entered.
+
+use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
+use bevy::prelude::*;
+use bevy::state::state::StateTransitionEvent;
+use bevy_egui::EguiContexts;
+use bevy_sphere_physics::prelude::*;
+
+use crate::controls::LabUi;
+use crate::render::WALL_RADIUS;
+use crate::scenes::{ActiveScene, LabPersistent};
+
+/// Where the camera looks from: `distance` from `target`, turned `yaw` radians about the
+/// vertical and `pitch` radians above the horizontal.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct OrbitCamera {
+    /// The point looked at.
+    pub target: Vec3,
+    /// Radians about the vertical axis.
+    pub yaw: f32,
+    /// Radians above the horizontal, within ±1.5.
+    pub pitch: f32,
+    /// Distance from the target.
+    pub distance: f32,
+}
+
+impl Default for OrbitCamera {
+    fn default() -> Self {
+        Self {
+            target: Vec3::ZERO,
+            yaw: 0.0,
+            pitch: 0.25,
+            distance: 12.0,
+        }
+    }
+}
+
+impl OrbitCamera {
+    /// The camera's transform.
+    pub fn transform(&self) -> Transform {
+        let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, -self.pitch, 0.0);
+        Transform::from_translation(self.target + rotation * Vec3::Z * self.distance)
+            .looking_at(self.target, Vec3::Y)
+    }
+}
+
+/// Spawns the orbiting camera and moves it.
+pub struct OrbitCameraPlugin;
+
+impl Plugin for OrbitCameraPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_systems(Startup, spawn_camera).add_systems(
+            Update,
+            (
+                frame_scene.run_if(on_message::<StateTransitionEvent<ActiveScene>>),
+                orbit,
+            )
+                .chain(),
+        );
+    }
+}
+
+fn spawn_camera(mut commands: Commands) {
+    let orbit = OrbitCamera::default();
+    commands.spawn((LabPersistent, Camera3d::default(), orbit.transform(), orbit));
+}
+
+/// Frames the spheres (and anchors) of a scene just entered.
+fn frame_scene(
+    spheres: Query<(&Transform, &SphereBody, Option<&Tethered>), Without<OrbitCamera>>,
+    mut cameras: Query<(&mut OrbitCamera, &Projection)>,
+) {
+    let mut low = Vec3::splat(f32::INFINITY);
+    let mut high = Vec3::splat(f32::NEG_INFINITY);
+    for (transform, body, tether) in &spheres {
+        if body.radius > WALL_RADIUS {
+            continue;
+        }
+        low = low.min(transform.translation - body.radius as f32);
+        high = high.max(transform.translation + body.radius as f32);
+        if let Some(t) = tether {
+            low = low.min(t.anchor.as_vec3());
+            high = high.max(t.anchor.as_vec3());
+        }
+    }
+    if !low.is_finite() {
+        return;
+    }
+    for (mut orbit, projection) in &mut cameras {
+        let fov = match projection {
+            Projection::Perspective(p) => p.fov,
+            _ => std::f32::consts::FRAC_PI_4,
+        };
+        let radius = ((high - low) / 2.0).length().max(0.5);
+        *orbit = OrbitCamera {
+            target: (low + high) / 2.0,
+            yaw: 0.0,
+            pitch: 0.2,
+            distance: radius / (fov / 2.0).tan() * 1.05,
+        };
+    }
+}
+
+fn orbit(
+    mut cameras: Query<(&mut OrbitCamera, &mut Transform)>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    time: Res<Time>,
+    ui: Res<LabUi>,
+    mut egui: EguiContexts,
+) {
+    let egui_wants_pointer = egui
+        .ctx_mut()
+        .is_ok_and(|ctx| ctx.egui_wants_pointer_input() || ctx.is_pointer_over_egui());
+    let mut turn = Vec2::ZERO;
+    let mut zoom = 0.0;
+    if !egui_wants_pointer {
+        if buttons.pressed(MouseButton::Left) {
+            turn += motion.delta * 0.005;
+        }
+        zoom += match scroll.unit {
+            MouseScrollUnit::Line => scroll.delta.y * 0.1,
+            MouseScrollUnit::Pixel => scroll.delta.y * 0.002,
+        };
+    }
+    if !ui.chooser_open {
+        let rate = time.delta_secs() * 1.5;
+        let axis = |neg, pos| f32::from(keys.pressed(pos)) - f32::from(keys.pressed(neg));
+        turn.x -= axis(KeyCode::ArrowLeft, KeyCode::ArrowRight) * rate;
+        turn.y -= axis(KeyCode::ArrowDown, KeyCode::ArrowUp) * rate;
+        zoom += axis(KeyCode::Minus, KeyCode::Equal) * rate;
+    }
+    for (mut orbit, mut transform) in &mut cameras {
+        if turn != Vec2::ZERO || zoom != 0.0 {
+            orbit.yaw -= turn.x;
+            orbit.pitch = (orbit.pitch + turn.y).clamp(-1.5, 1.5);
+            orbit.distance = (orbit.distance * (1.0 - zoom).clamp(0.5, 1.5)).max(0.05);
+        }
+        let wanted = orbit.transform();
+        if *transform != wanted {
+            *transform = wanted;
+        }
+    }
+}

@@ -1,0 +1,220 @@
+//! The sphere lab: the tutorial's app in Bevy. Scenes are Bevy [`States`]
+//! ([`ActiveScene`]) listed in a registry ([`LabScenes`]) that games add to with one call
+//! ([`LabAppExt::add_lab_scene`]); every scene file in `assets/scenes/` appears too.
+//!
+//! [`LabPlugin`] is the headless part: scenes, the keys ([`controls`]), and saving stamped
+//! screenshots. With the `render` feature (on by default), [`render::LabRenderPlugin`] draws the
+//! spheres, strings and frames, [`ui::LabUiPlugin`] shows the chooser and the panel in egui, and
+//! [`lab_app`] builds the whole windowed app.
+#![warn(missing_docs)]
+
+pub mod controls;
+pub mod scenes;
+pub mod screenshot;
+pub mod stamp;
+
+#[cfg(feature = "render")]
+pub mod camera;
+#[cfg(feature = "render")]
+pub mod render;
+#[cfg(feature = "render")]
+pub mod ui;
+
+use std::path::PathBuf;
+
+use bevy::input::InputPlugin;
+use bevy::prelude::*;
+use bevy::state::app::StatesPlugin;
+use bevy_sphere_physics::SpherePhysicsPlugin;
+
+pub use controls::{Autopilot, LabAction, LabUi};
+pub use scenes::{ActiveScene, LabAppExt, LabPersistent, LabScene, LabSceneSystems, LabScenes};
+pub use screenshot::{FrameCaptured, ScreenshotRequested, ScreenshotSettings, ScreenshotStatus};
+
+/// The lab without a window: scene states and registry, keys and actions, screenshot saving.
+/// Adds `StatesPlugin`, `InputPlugin` and [`SpherePhysicsPlugin`] if the app has none yet.
+#[derive(Clone, Debug)]
+pub struct LabPlugin {
+    /// The scene to open at start; `None` opens the chooser.
+    pub start: Option<String>,
+    /// The folder whose `*.ron` scene files are added to the chooser; `None` adds none.
+    pub scene_folder: Option<PathBuf>,
+    /// Where screenshots go.
+    pub screenshots: ScreenshotSettings,
+    /// Unattended screenshot and exit.
+    pub autopilot: Autopilot,
+}
+
+impl Default for LabPlugin {
+    fn default() -> Self {
+        Self {
+            start: None,
+            scene_folder: Some(default_scene_folder()),
+            screenshots: ScreenshotSettings::default(),
+            autopilot: Autopilot::default(),
+        }
+    }
+}
+
+/// `assets/scenes` under the package (found through `CARGO_MANIFEST_DIR` at run time under
+/// `cargo run`, else at build time), or relative to the working directory.
+pub fn default_scene_folder() -> PathBuf {
+    let under = |root: PathBuf| root.join("assets").join("scenes");
+    std::env::var_os("CARGO_MANIFEST_DIR")
+        .map(|d| under(PathBuf::from(d)))
+        .filter(|p| p.is_dir())
+        .or_else(|| Some(under(PathBuf::from(env!("CARGO_MANIFEST_DIR")))).filter(|p| p.is_dir()))
+        .unwrap_or_else(|| under(PathBuf::from(".")))
+}
+
+impl LabPlugin {
+    /// Opens straight into the scene `id`.
+    pub fn start_with(mut self, id: impl Into<String>) -> Self {
+        self.start = Some(id.into());
+        self
+    }
+
+    /// Reads the command line: `--scene ID`, `--screenshot-dir DIR`, `--screenshot-at SECONDS`
+    /// and `--exit` (quit after that screenshot). Returns an error naming a bad argument.
+    pub fn with_args(mut self, args: impl IntoIterator<Item = String>) -> Result<Self, String> {
+        let mut args = args.into_iter();
+        while let Some(arg) = args.next() {
+            let mut value = |name: &str| args.next().ok_or(format!("{name} needs a value"));
+            match arg.as_str() {
+                "--scene" => self.start = Some(value("--scene")?),
+                "--screenshot-dir" => self.screenshots.folder = value("--screenshot-dir")?.into(),
+                "--screenshot-at" => {
+                    let v = value("--screenshot-at")?;
+                    let t: f64 = v
+                        .parse()
+                        .ok()
+                        .filter(|t: &f64| t.is_finite() && *t >= 0.0)
+                        .ok_or(format!("--screenshot-at: {v:?} is not a time in seconds"))?;
+                    self.autopilot.screenshot_at = Some(t);
+                }
+                "--exit" => self.autopilot.exit_after_screenshot = true,
+                other => {
+                    return Err(format!(
+                        "unknown argument {other:?} (expected --scene ID, --screenshot-dir DIR, \
+                         --screenshot-at SECONDS, --exit)"
+                    ));
+                }
+            }
+        }
+        Ok(self)
+    }
+}
+
+/// The order of the lab's per-frame systems in `Update`.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LabSystems {
+    /// Keys and buttons become [`LabAction`]s.
+    Input,
+    /// Actions are carried out.
+    Act,
+    /// Captured frames are saved.
+    Save,
+}
+
+impl Plugin for LabPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.is_plugin_added::<StatesPlugin>() {
+            app.add_plugins(StatesPlugin);
+        }
+        if !app.is_plugin_added::<InputPlugin>() {
+            app.add_plugins(InputPlugin);
+        }
+        if !app.is_plugin_added::<SpherePhysicsPlugin>() {
+            app.add_plugins(SpherePhysicsPlugin::default());
+        }
+        app.init_resource::<LabScenes>()
+            .insert_resource(self.screenshots.clone())
+            .insert_resource(self.autopilot.clone())
+            .init_resource::<ScreenshotStatus>()
+            .add_message::<LabAction>()
+            .add_message::<ScreenshotRequested>()
+            .add_message::<FrameCaptured>()
+            .init_state::<ActiveScene>()
+            .configure_sets(
+                Update,
+                (LabSystems::Input, LabSystems::Act, LabSystems::Save).chain(),
+            )
+            .add_systems(
+                Update,
+                (
+                    (controls::keyboard_actions, controls::autopilot).in_set(LabSystems::Input),
+                    controls::apply_actions.in_set(LabSystems::Act),
+                    screenshot::save_captured_frames.in_set(LabSystems::Save),
+                ),
+            );
+        if let Some(folder) = &self.scene_folder {
+            for file in scenes::scene_files(folder) {
+                app.add_lab_scene_file(file);
+            }
+        }
+        app.insert_resource(LabUi {
+            chooser_open: true,
+            selected: 0,
+        })
+        .insert_resource(StartScene(self.start.clone()))
+        .add_systems(Startup, open_start_scene);
+    }
+}
+
+/// The scene to open at start.
+#[derive(Resource)]
+struct StartScene(Option<String>);
+
+/// Opens the start scene, once every plugin has registered its scenes; the chooser stays open
+/// if there is none or it is unknown.
+fn open_start_scene(
+    start: Res<StartScene>,
+    scenes: Res<LabScenes>,
+    mut ui: ResMut<LabUi>,
+    mut next: ResMut<NextState<ActiveScene>>,
+) {
+    let Some(id) = &start.0 else {
+        return;
+    };
+    match scenes.position(id) {
+        Some(i) => {
+            next.set(ActiveScene::scene(id.clone()));
+            ui.selected = i;
+            ui.chooser_open = false;
+        }
+        None => warn!("no scene with id {id:?}: opening the chooser"),
+    }
+}
+
+/// The whole windowed lab: Bevy's default plugins (window titled "Sphere lab"), egui, the
+/// renderer, the chooser and panel, and [`LabPlugin`] configured from the command line (see
+/// [`LabPlugin::with_args`]). `start` opens straight into that scene; `--scene` overrides it.
+#[cfg(feature = "render")]
+pub fn lab_app(start: Option<&str>) -> App {
+    let mut lab = LabPlugin::default();
+    lab.start = start.map(str::to_owned);
+    let lab = match lab.with_args(std::env::args().skip(1)) {
+        Ok(lab) => lab,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(2);
+        }
+    };
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(Window {
+            title: "Sphere lab".into(),
+            resolution: (1280, 720).into(),
+            ..default()
+        }),
+        ..default()
+    }))
+    .add_plugins(bevy_egui::EguiPlugin::default())
+    .add_plugins((
+        lab,
+        render::LabRenderPlugin,
+        camera::OrbitCameraPlugin,
+        ui::LabUiPlugin,
+    ));
+    app
+}

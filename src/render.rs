@@ -1,0 +1,306 @@
+//! Drawing the lab: lit spheres in the tutorial's colours (blue 1x, green 2x, red 3x the
+//! scene's lightest density; fixed spheres grey), strings and a frame for tethered spheres, a
+//! ground under each scene, lights, and capturing frames for screenshots.
+
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::state::state::StateTransitionEvent;
+use bevy_sphere_physics::prelude::*;
+
+use crate::scenes::{ActiveScene, LabPersistent};
+use crate::screenshot::{FrameCaptured, ScreenshotRequested};
+
+/// Spheres larger than this are walls (the gas box's): not drawn.
+pub const WALL_RADIUS: f64 = 1000.0;
+
+/// The tutorial's colours.
+pub mod colours {
+    use bevy::color::Color;
+    /// Density 1x the scene's lightest.
+    pub const BLUE: Color = Color::srgb(0.12, 0.32, 0.95);
+    /// Density 2x.
+    pub const GREEN: Color = Color::srgb(0.12, 0.78, 0.22);
+    /// Density 3x.
+    pub const RED: Color = Color::srgb(0.92, 0.12, 0.10);
+    /// Fixed spheres.
+    pub const GREY: Color = Color::srgb(0.55, 0.56, 0.58);
+    /// Strings.
+    pub const STRING: Color = Color::srgb(0.85, 0.85, 0.80);
+    /// The cradle's frame.
+    pub const FRAME: Color = Color::srgb(0.30, 0.22, 0.16);
+    /// The ground.
+    pub const GROUND: Color = Color::srgb(0.20, 0.21, 0.23);
+    /// The background.
+    pub const SKY: Color = Color::srgb(0.05, 0.06, 0.08);
+}
+
+/// Draws spheres, strings, frames and the ground; captures frames for screenshots.
+pub struct LabRenderPlugin;
+
+impl Plugin for LabRenderPlugin {
+    fn build(&self, app: &mut App) {
+        app.insert_resource(ClearColor(colours::SKY))
+            .add_systems(Startup, setup)
+            .add_systems(
+                Update,
+                (
+                    dress_spheres,
+                    dress_strings,
+                    place_strings,
+                    build_stage.run_if(on_message::<StateTransitionEvent<ActiveScene>>),
+                    capture_frames,
+                )
+                    .chain(),
+            );
+    }
+}
+
+/// Meshes and materials every scene shares.
+#[derive(Resource)]
+struct LabAssets {
+    sphere: Handle<Mesh>,
+    rod: Handle<Mesh>,
+    ground: Handle<Mesh>,
+    blue: Handle<StandardMaterial>,
+    green: Handle<StandardMaterial>,
+    red: Handle<StandardMaterial>,
+    grey: Handle<StandardMaterial>,
+    string: Handle<StandardMaterial>,
+    frame: Handle<StandardMaterial>,
+    floor: Handle<StandardMaterial>,
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let mut shiny = |colour: Color, roughness: f32| {
+        materials.add(StandardMaterial {
+            base_color: colour,
+            perceptual_roughness: roughness,
+            ..default()
+        })
+    };
+    commands.insert_resource(LabAssets {
+        sphere: meshes.add(Sphere::new(1.0).mesh().uv(32, 18)),
+        rod: meshes.add(Cylinder::new(1.0, 1.0)),
+        ground: meshes.add(Plane3d::default().mesh().size(1.0, 1.0)),
+        blue: shiny(colours::BLUE, 0.3),
+        green: shiny(colours::GREEN, 0.3),
+        red: shiny(colours::RED, 0.3),
+        grey: shiny(colours::GREY, 0.5),
+        string: shiny(colours::STRING, 0.9),
+        frame: shiny(colours::FRAME, 0.6),
+        floor: shiny(colours::GROUND, 0.95),
+    });
+    commands.insert_resource(GlobalAmbientLight {
+        brightness: 250.0,
+        ..default()
+    });
+    commands.spawn((
+        LabPersistent,
+        DirectionalLight {
+            illuminance: 9000.0,
+            shadow_maps_enabled: true,
+            ..default()
+        },
+        Transform::from_xyz(4.0, 10.0, 6.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+}
+
+/// The sphere's visual: a child scaled to the radius, so the physics owns the parent's
+/// transform.
+#[derive(Component)]
+struct SphereVisual;
+
+/// A sphere the renderer has seen (walls get no visual).
+#[derive(Component)]
+struct Dressed;
+
+/// A tethered sphere's string: a child rod from the sphere to the anchor.
+#[derive(Component)]
+struct StringVisual;
+
+#[allow(clippy::type_complexity)]
+fn dress_spheres(
+    mut commands: Commands,
+    assets: Res<LabAssets>,
+    new: Query<(Entity, &SphereBody, &Density, Has<FixedSphere>), Without<Dressed>>,
+    all: Query<(&SphereBody, &Density, Has<FixedSphere>)>,
+) {
+    if new.is_empty() {
+        return;
+    }
+    let lightest = all
+        .iter()
+        .filter(|(b, _, fixed)| !fixed && b.radius <= WALL_RADIUS)
+        .map(|(_, d, _)| d.0)
+        .fold(f64::INFINITY, f64::min);
+    for (entity, body, density, fixed) in &new {
+        commands.entity(entity).insert(Dressed);
+        if body.radius > WALL_RADIUS || !body.radius.is_finite() {
+            continue;
+        }
+        let material = if fixed {
+            assets.grey.clone()
+        } else {
+            let ratio = density.0 / lightest;
+            if ratio < 1.5 {
+                assets.blue.clone()
+            } else if ratio < 2.5 {
+                assets.green.clone()
+            } else {
+                assets.red.clone()
+            }
+        };
+        commands
+            .entity(entity)
+            .insert(Visibility::default())
+            .with_child((
+                SphereVisual,
+                Mesh3d(assets.sphere.clone()),
+                MeshMaterial3d(material),
+                Transform::from_scale(Vec3::splat(body.radius as f32)),
+            ));
+    }
+}
+
+fn dress_strings(
+    mut commands: Commands,
+    assets: Res<LabAssets>,
+    tethered: Query<(Entity, &Children), With<Tethered>>,
+    strings: Query<(), With<StringVisual>>,
+) {
+    for (entity, children) in &tethered {
+        if children.iter().any(|c| strings.contains(c)) {
+            continue;
+        }
+        commands.entity(entity).with_child((
+            StringVisual,
+            Mesh3d(assets.rod.clone()),
+            MeshMaterial3d(assets.string.clone()),
+            Transform::default(),
+        ));
+    }
+}
+
+/// Strings run from the sphere's centre to its anchor (the part inside the sphere is hidden).
+fn place_strings(
+    spheres: Query<(&Transform, &Tethered, &SphereBody, &Children), Without<StringVisual>>,
+    mut strings: Query<&mut Transform, With<StringVisual>>,
+) {
+    for (transform, tether, body, children) in &spheres {
+        let to_anchor = tether.anchor.as_vec3() - transform.translation;
+        let length = to_anchor.length();
+        let width = (body.radius as f32 * 0.04).max(0.002);
+        for child in children.iter() {
+            if let Ok(mut string) = strings.get_mut(child) {
+                *string = Transform {
+                    translation: to_anchor / 2.0,
+                    rotation: Quat::from_rotation_arc(Vec3::Y, to_anchor.normalize_or(Vec3::Y)),
+                    scale: Vec3::new(width, length, width),
+                };
+            }
+        }
+    }
+}
+
+/// A rod between two points.
+fn rod(assets: &LabAssets, from: Vec3, to: Vec3, width: f32) -> impl Bundle {
+    let along = to - from;
+    (
+        Mesh3d(assets.rod.clone()),
+        MeshMaterial3d(assets.frame.clone()),
+        Transform {
+            translation: (from + to) / 2.0,
+            rotation: Quat::from_rotation_arc(Vec3::Y, along.normalize_or(Vec3::Y)),
+            scale: Vec3::new(width, along.length(), width),
+        },
+    )
+}
+
+/// On entering a scene: the ground under its spheres and, if it has tethers, a frame that
+/// holds the anchors.
+fn build_stage(
+    mut commands: Commands,
+    assets: Res<LabAssets>,
+    state: Res<State<ActiveScene>>,
+    spheres: Query<(&Transform, &SphereBody, Option<&Tethered>)>,
+) {
+    if *state.get() == ActiveScene::None {
+        return;
+    }
+    let scope = DespawnOnExit(state.get().clone());
+    let mut low = Vec3::splat(f32::INFINITY);
+    let mut high = Vec3::splat(f32::NEG_INFINITY);
+    let mut anchors = Vec::new();
+    let mut smallest = f32::INFINITY;
+    for (transform, body, tether) in &spheres {
+        if body.radius > WALL_RADIUS {
+            continue;
+        }
+        let r = body.radius as f32;
+        low = low.min(transform.translation - r);
+        high = high.max(transform.translation + r);
+        smallest = smallest.min(r);
+        if let Some(t) = tether {
+            anchors.push(t.anchor.as_vec3());
+            low = low.min(t.anchor.as_vec3());
+            high = high.max(t.anchor.as_vec3());
+        }
+    }
+    if !low.is_finite() {
+        return;
+    }
+    let extent = (high - low).max_element().max(1.0);
+    let ground = low.y - 0.25 * extent;
+    let centre = (low + high) / 2.0;
+    commands.spawn((
+        scope.clone(),
+        Mesh3d(assets.ground.clone()),
+        MeshMaterial3d(assets.floor.clone()),
+        Transform::from_xyz(centre.x, ground, centre.z).with_scale(Vec3::splat(extent * 8.0)),
+    ));
+    if anchors.is_empty() {
+        return;
+    }
+    // A gallows frame: a top bar through the anchors, two legs, two feet.
+    let a_low = anchors.iter().fold(Vec3::INFINITY, |a, b| a.min(*b));
+    let a_high = anchors.iter().fold(Vec3::NEG_INFINITY, |a, b| a.max(*b));
+    let width = (smallest * 0.25).max(0.005);
+    let margin = smallest * 2.0;
+    let top = a_high.y;
+    let left = Vec3::new(a_low.x - margin, top, (a_low.z + a_high.z) / 2.0);
+    let right = Vec3::new(a_high.x + margin, top, (a_low.z + a_high.z) / 2.0);
+    let foot = (top - ground) * 0.3;
+    for end in [left, right] {
+        let base = Vec3::new(end.x, ground, end.z);
+        commands.spawn((scope.clone(), rod(&assets, end, base, width)));
+        commands.spawn((
+            scope.clone(),
+            rod(&assets, base - Vec3::Z * foot, base + Vec3::Z * foot, width),
+        ));
+    }
+    commands.spawn((scope, rod(&assets, left, right, width)));
+}
+
+/// Turns screenshot requests into window captures, and captures into [`FrameCaptured`].
+fn capture_frames(mut commands: Commands, mut requests: MessageReader<ScreenshotRequested>) {
+    for request in requests.read() {
+        let time = request.time;
+        commands.spawn(Screenshot::primary_window()).observe(
+            move |captured: On<ScreenshotCaptured>, mut frames: MessageWriter<FrameCaptured>| {
+                match captured.image.clone().try_into_dynamic() {
+                    Ok(image) => {
+                        let mut image = image.to_rgba8();
+                        // The alpha channel may hold HDR brightness: the saved picture is opaque.
+                        image.pixels_mut().for_each(|p| p.0[3] = 255);
+                        frames.write(FrameCaptured { image, time });
+                    }
+                    Err(e) => error!("screenshot: cannot read the captured frame: {e}"),
+                }
+            },
+        );
+    }
+}

@@ -1,0 +1,328 @@
+//! Scenes as Bevy states: the registry the chooser lists, scene files, and what happens when a
+//! scene is entered (the physics restarts with the scene's settings, its entities are spawned)
+//! and left (its entities are despawned).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use bevy::ecs::system::ScheduleSystem;
+use bevy::prelude::*;
+use bevy_sphere_physics::prelude::*;
+use bevy_sphere_physics::sphere_physics::{SceneDesc, SceneError, Settings, SphereSpec};
+
+/// The scene being shown: a Bevy state. `None` before the first scene is chosen.
+///
+/// Entering `Scene(id)` restarts the physics with that scene's settings and spawns its
+/// entities; leaving it despawns them.
+#[derive(States, Clone, PartialEq, Eq, Hash, Debug, Default)]
+pub enum ActiveScene {
+    /// No scene yet: the chooser is open.
+    #[default]
+    None,
+    /// The scene registered under this id.
+    Scene(String),
+}
+
+impl ActiveScene {
+    /// The state of the scene `id`.
+    pub fn scene(id: impl Into<String>) -> Self {
+        Self::Scene(id.into())
+    }
+
+    /// The scene's id, if any.
+    pub fn id(&self) -> Option<&str> {
+        match self {
+            Self::None => None,
+            Self::Scene(id) => Some(id),
+        }
+    }
+}
+
+/// A scene's entry in the chooser (the tutorial's `SceneAttribute`) and the physics it runs
+/// with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LabScene {
+    /// Unique id: the state is `ActiveScene::Scene(id)`; file scenes use the file's stem.
+    pub id: String,
+    /// Shown in the chooser.
+    pub name: String,
+    /// Shown in the chooser: what the scene shows and what it models.
+    pub description: String,
+    /// The core's settings: gravity, method, integrator, substeps.
+    pub settings: Settings,
+    /// Restitution of spheres that do not set their own.
+    pub restitution: f64,
+    /// The fixed step, in seconds.
+    pub dt: f64,
+}
+
+impl LabScene {
+    /// A scene with Earth's gravity, elastic spheres and a 1/60 s step.
+    pub fn new(
+        id: impl Into<String>,
+        name: impl Into<String>,
+        description: impl Into<String>,
+    ) -> Self {
+        Self {
+            id: id.into(),
+            name: name.into(),
+            description: description.into(),
+            settings: Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)),
+            restitution: 1.0,
+            dt: 1.0 / 60.0,
+        }
+    }
+
+    /// With these core settings.
+    pub fn settings(mut self, settings: Settings) -> Self {
+        self.settings = settings;
+        self
+    }
+
+    /// With this default restitution.
+    pub fn restitution(mut self, restitution: f64) -> Self {
+        self.restitution = restitution;
+        self
+    }
+
+    /// With this fixed step.
+    pub fn dt(mut self, dt: f64) -> Self {
+        self.dt = dt;
+        self
+    }
+
+    /// The entry for a scene file's contents, under `id`.
+    pub fn from_desc(id: impl Into<String>, desc: &SceneDesc) -> Result<Self, SceneError> {
+        let id = id.into();
+        Ok(Self {
+            name: if desc.name.is_empty() {
+                id.clone()
+            } else {
+                desc.name.clone()
+            },
+            id,
+            description: desc.description.clone(),
+            settings: desc.settings()?,
+            restitution: desc.restitution,
+            dt: desc.dt.unwrap_or(1.0 / 60.0),
+        })
+    }
+}
+
+/// Every registered scene, in the chooser's order, and the scene files that failed to load.
+#[derive(Resource, Clone, Debug, Default)]
+pub struct LabScenes {
+    scenes: Vec<LabScene>,
+    /// Scene files that could not be loaded, with the reason (file, line and column).
+    pub errors: Vec<String>,
+}
+
+impl LabScenes {
+    /// The scenes in the chooser's order.
+    pub fn iter(&self) -> impl Iterator<Item = &LabScene> {
+        self.scenes.iter()
+    }
+
+    /// The scene `id`.
+    pub fn get(&self, id: &str) -> Option<&LabScene> {
+        self.scenes.iter().find(|s| s.id == id)
+    }
+
+    /// Where the scene `id` is in the chooser.
+    pub fn position(&self, id: &str) -> Option<usize> {
+        self.scenes.iter().position(|s| s.id == id)
+    }
+
+    /// How many scenes there are.
+    pub fn len(&self) -> usize {
+        self.scenes.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.scenes.is_empty()
+    }
+
+    /// The scene at `index` in the chooser's order.
+    pub fn at(&self, index: usize) -> Option<&LabScene> {
+        self.scenes.get(index)
+    }
+}
+
+/// The order of the systems that run when a scene is entered.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LabSceneSystems {
+    /// The physics restarts with the scene's settings.
+    Reset,
+    /// The scene's own systems spawn its entities.
+    Build,
+    /// Every new entity with a `Transform` is tied to the scene, so it is despawned on exit.
+    Scope,
+}
+
+/// Entities that outlive scenes (the camera, lights): never despawned on a scene change.
+#[derive(Component, Clone, Copy, Debug, Default)]
+pub struct LabPersistent;
+
+/// Registering scenes on the [`App`].
+pub trait LabAppExt {
+    /// Adds a scene to the chooser: `build` (one or more systems) runs when it is entered and
+    /// spawns its entities. Every entity with a `Transform` and no parent that exists after
+    /// `build` ran, and is not [`LabPersistent`], belongs to the scene and is despawned when it
+    /// is left. A second scene with an id already registered is ignored, with a warning.
+    fn add_lab_scene<M>(
+        &mut self,
+        scene: LabScene,
+        build: impl IntoScheduleConfigs<ScheduleSystem, M>,
+    ) -> &mut Self;
+
+    /// Adds the scene file at `path` (a `sphere-sim` scene in RON) under the file's stem. A
+    /// file that cannot be read or parsed is listed in [`LabScenes::errors`] instead.
+    fn add_lab_scene_file(&mut self, path: impl AsRef<Path>) -> &mut Self;
+}
+
+impl LabAppExt for App {
+    fn add_lab_scene<M>(
+        &mut self,
+        scene: LabScene,
+        build: impl IntoScheduleConfigs<ScheduleSystem, M>,
+    ) -> &mut Self {
+        let mut scenes = self.world_mut().get_resource_or_init::<LabScenes>();
+        if scenes.get(&scene.id).is_some() {
+            warn!(
+                "a scene with id {:?} is already registered; ignored",
+                scene.id
+            );
+            return self;
+        }
+        scenes.scenes.push(scene.clone());
+        let schedule = OnEnter(ActiveScene::scene(scene.id.clone()));
+        let reset = move |mut commands: Commands, mut fixed: ResMut<Time<Fixed>>| {
+            commands.queue(
+                ResetSpherePhysics::new(scene.settings.clone()).restitution(scene.restitution),
+            );
+            fixed.set_timestep_seconds(scene.dt);
+        };
+        self.configure_sets(
+            schedule.clone(),
+            (
+                LabSceneSystems::Reset,
+                LabSceneSystems::Build,
+                LabSceneSystems::Scope,
+            )
+                .chain(),
+        )
+        .add_systems(
+            schedule,
+            (
+                reset.in_set(LabSceneSystems::Reset),
+                build.in_set(LabSceneSystems::Build),
+                scope_scene_entities.in_set(LabSceneSystems::Scope),
+            ),
+        )
+    }
+
+    fn add_lab_scene_file(&mut self, path: impl AsRef<Path>) -> &mut Self {
+        let path = path.as_ref();
+        let id = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let loaded = SceneDesc::load(path).and_then(|desc| {
+            let scene = LabScene::from_desc(id, &desc)?;
+            desc.all_spheres().map(|spheres| (scene, spheres))
+        });
+        match loaded {
+            Ok((scene, spheres)) => {
+                let spheres = Arc::new(spheres);
+                self.add_lab_scene(scene, move |mut commands: Commands| {
+                    spawn_spheres(&mut commands, &spheres);
+                })
+            }
+            Err(e) => {
+                warn!("scene file left out: {e}");
+                self.world_mut()
+                    .get_resource_or_init::<LabScenes>()
+                    .errors
+                    .push(e.to_string());
+                self
+            }
+        }
+    }
+}
+
+/// Spawns one entity per sphere of a scene file, named as in the file.
+pub fn spawn_spheres(commands: &mut Commands, spheres: &[SphereSpec]) {
+    for (i, s) in spheres.iter().enumerate() {
+        let position = DVec3::from_array(s.position);
+        let mut entity = commands.spawn((
+            Name::new(s.name.clone().unwrap_or_else(|| format!("sphere {i}"))),
+            SphereBody::new(s.radius),
+            SpherePosition(position),
+            Transform::from_translation(position.as_vec3()),
+            SphereVelocity(DVec3::from_array(s.velocity)),
+            Density(s.density),
+            AppliedForce(DVec3::from_array(s.force)),
+        ));
+        if let Some(r) = s.restitution {
+            entity.insert(Restitution(r));
+        }
+        if s.fixed {
+            entity.insert(FixedSphere);
+        }
+        if let Some(t) = &s.tether {
+            entity.insert(Tethered {
+                anchor: t.anchor,
+                length: t.length,
+            });
+        }
+    }
+}
+
+/// Ties every new top-level entity with a `Transform` to the scene being entered.
+fn scope_scene_entities(
+    mut commands: Commands,
+    state: Res<State<ActiveScene>>,
+    new: Query<
+        Entity,
+        (
+            With<Transform>,
+            Without<ChildOf>,
+            Without<DespawnOnExit<ActiveScene>>,
+            Without<LabPersistent>,
+        ),
+    >,
+) {
+    for entity in &new {
+        commands
+            .entity(entity)
+            .insert(DespawnOnExit(state.get().clone()));
+    }
+}
+
+/// The scene files in a folder (`*.ron`), the tutorial's four scenes first, in its order, then
+/// the rest by name.
+pub fn scene_files(folder: &Path) -> Vec<PathBuf> {
+    const FIRST: [&str; 4] = [
+        "applied_forces",
+        "density_collisions",
+        "newtons_cradle",
+        "sphere_shower",
+    ];
+    let mut files: Vec<PathBuf> = std::fs::read_dir(folder)
+        .map(|dir| {
+            dir.filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort_by_key(|p| {
+        let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
+        let rank = stem
+            .as_deref()
+            .and_then(|s| FIRST.iter().position(|f| *f == s))
+            .unwrap_or(FIRST.len());
+        (rank, stem)
+    });
+    files
+}

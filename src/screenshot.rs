@@ -1,0 +1,97 @@
+//! Saving screenshots: the folder, the stamp, the file, and the outcome shown to the user.
+//!
+//! Capturing the window's frame needs the renderer (the `render` feature's
+//! [`LabRenderPlugin`](crate::render::LabRenderPlugin) turns a [`ScreenshotRequested`] into a
+//! [`FrameCaptured`]); everything after the capture is here and runs headless.
+
+use std::path::{Path, PathBuf};
+
+use bevy::prelude::*;
+use image::RgbaImage;
+
+use crate::stamp::stamp_time;
+
+/// Where screenshots go. The folder is created if missing. Default `screenshots/`.
+#[derive(Resource, Clone, Debug, PartialEq, Eq)]
+pub struct ScreenshotSettings {
+    /// The folder.
+    pub folder: PathBuf,
+}
+
+impl Default for ScreenshotSettings {
+    fn default() -> Self {
+        Self {
+            folder: PathBuf::from("screenshots"),
+        }
+    }
+}
+
+/// Asks for a screenshot of the next frame, stamped with the simulated time `time`.
+#[derive(Message, Clone, Copy, Debug, PartialEq)]
+pub struct ScreenshotRequested {
+    /// Simulated seconds shown in the frame.
+    pub time: f64,
+}
+
+/// A captured frame, to be stamped and saved.
+#[derive(Message, Clone, Debug)]
+pub struct FrameCaptured {
+    /// The frame's pixels.
+    pub image: RgbaImage,
+    /// Simulated seconds shown in the frame.
+    pub time: f64,
+}
+
+/// The last screenshot's outcome, shown on screen.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct ScreenshotStatus {
+    /// `Ok(path)` once saved, `Err(message)` if saving failed; `None` before the first.
+    pub last: Option<Result<PathBuf, String>>,
+    /// Screenshots saved.
+    pub saved: u32,
+    /// Screenshots that failed.
+    pub failed: u32,
+}
+
+/// Stamps `time` onto `image` and saves it as a PNG in `folder` (created if missing), under
+/// the first free name `sphere-lab-NNN.png`. Returns the file's path, or an error that says
+/// what could not be done where.
+pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result<PathBuf, String> {
+    std::fs::create_dir_all(folder)
+        .map_err(|e| format!("cannot create folder {}: {e}", folder.display()))?;
+    stamp_time(&mut image, time);
+    let path = (0..)
+        .map(|n| folder.join(format!("sphere-lab-{n:03}.png")))
+        .find(|p| !p.exists())
+        .expect("an unbounded range has a free name");
+    image
+        .save_with_format(&path, image::ImageFormat::Png)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    Ok(path)
+}
+
+/// Saves captured frames and records the outcome.
+pub(crate) fn save_captured_frames(
+    mut frames: MessageReader<FrameCaptured>,
+    settings: Res<ScreenshotSettings>,
+    mut status: ResMut<ScreenshotStatus>,
+) {
+    for frame in frames.read() {
+        let outcome = save_screenshot(&settings.folder, frame.image.clone(), frame.time);
+        match &outcome {
+            Ok(path) => {
+                info!(
+                    "screenshot at t = {:.3} s saved to {}",
+                    frame.time,
+                    path.display()
+                );
+                status.saved += 1;
+            }
+            Err(e) => {
+                error!("screenshot failed: {e}");
+                status.failed += 1;
+            }
+        }
+        status.last = Some(outcome);
+    }
+}

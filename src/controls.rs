@@ -16,7 +16,7 @@ use bevy_sphere_physics::SpherePhysicsWorld;
 use bevy_sphere_physics::prelude::*;
 
 use crate::scenes::{ActiveScene, LabScenes};
-use crate::screenshot::{ScreenshotRequested, ScreenshotStatus};
+use crate::screenshot::{RenderReady, ScreenshotRequested, ScreenshotStatus};
 
 /// Something the user asked for.
 #[derive(Message, Clone, Debug, PartialEq, Eq)]
@@ -183,12 +183,19 @@ pub(crate) fn autopilot(
     status: Res<ScreenshotStatus>,
     mut actions: MessageWriter<LabAction>,
     mut exit: MessageWriter<AppExit>,
+    ready: Option<Res<RenderReady>>,
+    mut frames: Local<u32>,
 ) {
     let Some(at) = pilot.screenshot_at else {
         return;
     };
+    *frames += 1;
     if !pilot.requested {
-        if *state.get() != ActiveScene::None && physics.world.time() >= at {
+        // A few frames first, so the window and the panels have been drawn; without a scene
+        // the time stays 0 and the chooser is captured.
+        let ready = ready.is_none_or(|r| r.frames >= 10);
+        if ready && *frames > 3 && (physics.world.time() >= at || *state.get() == ActiveScene::None)
+        {
             pilot.requested = true;
             actions.write(LabAction::Screenshot);
         }

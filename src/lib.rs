@@ -29,7 +29,9 @@ use bevy_sphere_physics::SpherePhysicsPlugin;
 
 pub use controls::{Autopilot, LabAction, LabUi};
 pub use scenes::{ActiveScene, LabAppExt, LabPersistent, LabScene, LabSceneSystems, LabScenes};
-pub use screenshot::{FrameCaptured, ScreenshotRequested, ScreenshotSettings, ScreenshotStatus};
+pub use screenshot::{
+    FrameCaptured, RenderReady, ScreenshotRequested, ScreenshotSettings, ScreenshotStatus,
+};
 
 /// The lab without a window: scene states and registry, keys and actions, screenshot saving.
 /// Adds `StatesPlugin`, `InputPlugin` and [`SpherePhysicsPlugin`] if the app has none yet.

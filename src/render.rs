@@ -8,7 +8,9 @@ use bevy::state::state::StateTransitionEvent;
 use bevy_sphere_physics::prelude::*;
 
 use crate::scenes::{ActiveScene, LabPersistent};
-use crate::screenshot::{FrameCaptured, ScreenshotRequested};
+use crate::screenshot::{FrameCaptured, RenderReady, ScreenshotRequested};
+use bevy::render::render_resource::PipelineCache;
+use bevy::render::{MainWorld, RenderApp};
 
 /// Spheres larger than this are walls (the gas box's): not drawn.
 pub const WALL_RADIUS: f64 = 1000.0;
@@ -39,6 +41,9 @@ pub struct LabRenderPlugin;
 
 impl Plugin for LabRenderPlugin {
     fn build(&self, app: &mut App) {
+        app.init_resource::<RenderReady>()
+            .sub_app_mut(RenderApp)
+            .add_systems(ExtractSchedule, count_ready_frames);
         app.insert_resource(ClearColor(colours::SKY))
             .add_systems(Startup, setup)
             .add_systems(
@@ -236,6 +241,8 @@ fn build_stage(
     let mut high = Vec3::splat(f32::NEG_INFINITY);
     let mut anchors = Vec::new();
     let mut smallest = f32::INFINITY;
+    // How far a tethered sphere swings out sideways beyond its anchor (as far as it starts).
+    let mut reach = 0.0f32;
     for (transform, body, tether) in &spheres {
         if body.radius > WALL_RADIUS {
             continue;
@@ -246,6 +253,7 @@ fn build_stage(
         smallest = smallest.min(r);
         if let Some(t) = tether {
             anchors.push(t.anchor.as_vec3());
+            reach = reach.max((transform.translation.x - t.anchor.x as f32).abs() + r);
             low = low.min(t.anchor.as_vec3());
             high = high.max(t.anchor.as_vec3());
         }
@@ -269,7 +277,7 @@ fn build_stage(
     let a_low = anchors.iter().fold(Vec3::INFINITY, |a, b| a.min(*b));
     let a_high = anchors.iter().fold(Vec3::NEG_INFINITY, |a, b| a.max(*b));
     let width = (smallest * 0.25).max(0.005);
-    let margin = smallest * 2.0;
+    let margin = (smallest * 2.0).max(reach * 1.15);
     let top = a_high.y;
     let left = Vec3::new(a_low.x - margin, top, (a_low.z + a_high.z) / 2.0);
     let right = Vec3::new(a_high.x + margin, top, (a_low.z + a_high.z) / 2.0);
@@ -302,5 +310,16 @@ fn capture_frames(mut commands: Commands, mut requests: MessageReader<Screenshot
                 }
             },
         );
+    }
+}
+
+/// Counts frames drawn with no pipeline still compiling (in the render world, at extraction).
+fn count_ready_frames(mut main_world: ResMut<MainWorld>, pipelines: Res<PipelineCache>) {
+    if let Some(mut ready) = main_world.get_resource_mut::<RenderReady>() {
+        if pipelines.waiting_pipelines().count() == 0 {
+            ready.frames = ready.frames.saturating_add(1);
+        } else {
+            ready.frames = 0;
+        }
     }
 }

@@ -42,6 +42,15 @@ pub struct FrameCaptured {
     pub time: f64,
 }
 
+/// How many frames in a row the renderer has drawn with every pipeline compiled (the
+/// `render` feature keeps it; headless apps have none). Unattended screenshots wait for a
+/// few, so they never capture a frame drawn before the shaders were ready.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderReady {
+    /// Consecutive frames with no pipeline waiting to compile.
+    pub frames: u32,
+}
+
 /// The last screenshot's outcome, shown on screen.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct ScreenshotStatus {

@@ -117,8 +117,8 @@ fn panel(
                         diagnostics.collisions, diagnostics.last.collisions
                     ),
                 );
-                let kinetic = world.kinetic_energy();
-                let potential = world.potential_energy();
+                let kinetic = world.kinetic_energy() + 0.0;
+                let potential = world.potential_energy() + 0.0;
                 row(
                     "energy",
                     format!(

@@ -8,7 +8,7 @@ use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_sphere_physics::prelude::*;
 use bevy_sphere_physics::sphere_physics::{self, Field, SphereDesc};
-use bevy_sphere_physics::{SpherePhysicsWorld, SphereRejected};
+use bevy_sphere_physics::{ResetSpherePhysics, SpherePhysicsWorld, SphereRejected};
 
 /// 1/64 s: exact in nanoseconds and in binary, so fixed steps and frames line up exactly.
 const STEP: Duration = Duration::from_nanos(15_625_000);
@@ -431,4 +431,41 @@ fn regression_body_removed_from_the_core_is_registered_again() {
     let physics = app.world().resource::<SpherePhysicsWorld>();
     assert_eq!(physics.world.len(), 1);
     assert_ne!(physics.body(ball), Some(id));
+}
+
+#[test]
+fn reset_restarts_time_and_settings_and_keeps_live_spheres() {
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * 9.81));
+    let doomed = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), Transform::from_xyz(-5.0, 0.0, 0.0)))
+        .id();
+    let kept = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), Transform::from_xyz(5.0, 0.0, 0.0)))
+        .id();
+    run_steps(&mut app, 8);
+    assert!(app.world().resource::<SpherePhysicsWorld>().world.time() > 0.1);
+    // A despawn whose removal is still queued must not reach the new world.
+    app.world_mut().despawn(doomed);
+    app.world_mut().commands().queue(
+        ResetSpherePhysics::new(sphere_physics::Settings::with_gravity(DVec3::ZERO))
+            .restitution(0.5),
+    );
+    app.world_mut().flush();
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert_eq!(physics.world.time(), 0.0);
+    assert!(physics.world.is_empty());
+    assert_eq!(app.world().resource::<SpherePhysicsDiagnostics>().steps, 0);
+    // The live sphere joins the new world at its current place and velocity, under no gravity.
+    let falling = velocity(&app, kept);
+    let at = position(&app, kept);
+    run_steps(&mut app, 4);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert_eq!(physics.world.len(), 1);
+    let body = physics.world.body(physics.body(kept).unwrap()).unwrap();
+    assert_eq!(body.velocity(), falling);
+    assert_eq!(body.restitution(), 0.5);
+    assert!((body.position() - (at + falling * 4.0 / 64.0)).length() < 1e-12);
+    assert_eq!(physics.world.time(), 4.0 / 64.0);
 }

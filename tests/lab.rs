@@ -1,0 +1,416 @@
+//! The lab without a window: the scene registry, switching scenes (the old scene's entities
+//! gone, the new ones there, the physics restarted), the keys through simulated keyboard input,
+//! and screenshots saved, stamped, or failing without stopping the app.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use bevy::input::ButtonState;
+use bevy::input::keyboard::{Key, KeyboardInput};
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_sphere_physics::SpherePhysicsWorld;
+use bevy_sphere_physics::prelude::*;
+use sphere_lab::stamp::{read_time_stamp, stamp_time, time_text};
+use sphere_lab::*;
+
+fn scene_folder() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes")
+}
+
+/// A headless lab stepping one 1/60 s fixed step per update.
+fn lab(plugin: LabPlugin) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, plugin))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+            1.0 / 60.0,
+        )));
+    app
+}
+
+fn lab_with(start: Option<&str>) -> App {
+    let mut plugin = LabPlugin {
+        scene_folder: Some(scene_folder()),
+        ..default()
+    };
+    plugin.start = start.map(str::to_owned);
+    let mut app = lab(plugin);
+    app.update();
+    app
+}
+
+fn state(app: &App) -> ActiveScene {
+    app.world().resource::<State<ActiveScene>>().get().clone()
+}
+
+fn spheres(app: &mut App) -> Vec<Entity> {
+    let mut q = app.world_mut().query_filtered::<Entity, With<SphereBody>>();
+    let mut v: Vec<Entity> = q.iter(app.world()).collect();
+    v.sort();
+    v
+}
+
+fn sim_time(app: &App) -> f64 {
+    app.world().resource::<SpherePhysicsWorld>().world.time()
+}
+
+fn press(app: &mut App, key: KeyCode) {
+    for state in [ButtonState::Pressed, ButtonState::Released] {
+        app.world_mut().write_message(KeyboardInput {
+            key_code: key,
+            logical_key: Key::Unidentified(bevy::input::keyboard::NativeKey::Unidentified),
+            state,
+            text: None,
+            repeat: false,
+            window: Entity::PLACEHOLDER,
+        });
+        app.update();
+    }
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sphere_lab_{}_{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn every_scene_file_is_registered_with_the_tutorial_scenes_first() {
+    let app = lab_with(None);
+    let scenes = app.world().resource::<LabScenes>();
+    let files = std::fs::read_dir(scene_folder())
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "ron")
+        })
+        .count();
+    assert_eq!(scenes.len(), files);
+    assert!(scenes.errors.is_empty(), "{:?}", scenes.errors);
+    let ids: Vec<&str> = scenes.iter().map(|s| s.id.as_str()).collect();
+    assert_eq!(
+        ids[..4],
+        [
+            "applied_forces",
+            "density_collisions",
+            "newtons_cradle",
+            "sphere_shower"
+        ]
+    );
+    for scene in scenes.iter() {
+        assert!(
+            !scene.name.is_empty() && !scene.description.is_empty(),
+            "{scene:?}"
+        );
+    }
+    let cradle = scenes.get("newtons_cradle").unwrap();
+    assert_eq!(cradle.settings.substeps, 2);
+    // No scene yet: the chooser is open.
+    assert_eq!(state(&app), ActiveScene::None);
+    assert!(app.world().resource::<LabUi>().chooser_open);
+}
+
+#[derive(Component)]
+struct Marble;
+
+#[test]
+fn a_game_adds_a_scene_with_one_call_and_a_broken_file_says_where() {
+    let dir = temp_dir("broken");
+    std::fs::create_dir_all(&dir).unwrap();
+    let broken = dir.join("broken.ron");
+    std::fs::write(
+        &broken,
+        "(\n  name: \"x\",\n  spheres: [ (radius: ) ],\n)\n",
+    )
+    .unwrap();
+    let mut app = lab(LabPlugin {
+        scene_folder: None,
+        ..default()
+    });
+    app.add_lab_scene(
+        LabScene::new("marbles", "Marbles", "Two marbles on a collision course."),
+        |mut commands: Commands| {
+            for x in [-1.0f32, 1.0] {
+                commands.spawn((
+                    Marble,
+                    SphereBody::new(0.1),
+                    Transform::from_xyz(x, 0.0, 0.0),
+                    SphereVelocity(DVec3::new(-x as f64, 0.0, 0.0)),
+                ));
+            }
+        },
+    )
+    .add_lab_scene(LabScene::new("marbles", "Again", "ignored"), || {})
+    .add_lab_scene_file(&broken);
+    app.update();
+    let scenes = app.world().resource::<LabScenes>();
+    assert_eq!(scenes.len(), 1);
+    assert_eq!(scenes.get("marbles").unwrap().name, "Marbles");
+    assert_eq!(scenes.errors.len(), 1);
+    assert!(
+        scenes.errors[0].contains("broken.ron:3:"),
+        "{}",
+        scenes.errors[0]
+    );
+
+    app.world_mut()
+        .write_message(LabAction::Load("marbles".into()));
+    app.update();
+    app.update();
+    assert_eq!(state(&app), ActiveScene::scene("marbles"));
+    let mut q = app.world_mut().query_filtered::<Entity, With<Marble>>();
+    assert_eq!(q.iter(app.world()).count(), 2);
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 2);
+}
+
+#[test]
+fn switching_scenes_despawns_the_old_and_restarts_the_physics() {
+    let mut app = lab_with(Some("density_collisions"));
+    assert_eq!(state(&app), ActiveScene::scene("density_collisions"));
+    assert!(!app.world().resource::<LabUi>().chooser_open);
+    for _ in 0..30 {
+        app.update();
+    }
+    let old = spheres(&mut app);
+    assert_eq!(old.len(), 6);
+    assert!(sim_time(&app) > 0.4);
+    let gravity_before = app
+        .world()
+        .resource::<SpherePhysicsWorld>()
+        .world
+        .settings()
+        .gravity;
+    assert_eq!(gravity_before, DVec3::ZERO);
+
+    app.world_mut()
+        .write_message(LabAction::Load("newtons_cradle".into()));
+    // The action is carried out in this frame's Update; the state changes in the next frame.
+    app.update();
+    assert_eq!(spheres(&mut app), old);
+    app.update();
+    let new = spheres(&mut app);
+    assert_eq!(new.len(), 5);
+    assert!(new.iter().all(|e| !old.contains(e)));
+    assert!(old.iter().all(|e| app.world().get_entity(*e).is_err()));
+    let mut tethered = app.world_mut().query::<&Tethered>();
+    assert_eq!(tethered.iter(app.world()).count(), 5);
+    let physics = &app.world().resource::<SpherePhysicsWorld>().world;
+    assert_eq!(physics.settings().gravity, DVec3::new(0.0, -9.81, 0.0));
+    assert!(sim_time(&app) < 0.05, "time restarted: {}", sim_time(&app));
+    app.update();
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 5);
+
+    // Restart (R): the same scene again, new entities, time from zero.
+    for _ in 0..20 {
+        app.update();
+    }
+    let before = spheres(&mut app);
+    press(&mut app, KeyCode::KeyR);
+    let after = spheres(&mut app);
+    assert_eq!(after.len(), 5);
+    assert!(after.iter().all(|e| !before.contains(e)));
+    assert!(sim_time(&app) < 0.05);
+    assert_eq!(state(&app), ActiveScene::scene("newtons_cradle"));
+}
+
+#[test]
+fn every_registered_scene_loads_and_steps() {
+    let mut app = lab_with(None);
+    let ids: Vec<String> = app
+        .world()
+        .resource::<LabScenes>()
+        .iter()
+        .map(|s| s.id.clone())
+        .collect();
+    for id in ids {
+        app.world_mut().write_message(LabAction::Load(id.clone()));
+        app.update();
+        app.update();
+        let n = spheres(&mut app).len();
+        let physics = &app.world().resource::<SpherePhysicsWorld>().world;
+        assert!(n > 0, "{id}");
+        assert_eq!(physics.len(), n, "{id}: every sphere is in the simulation");
+        assert!(physics.time() > 0.0, "{id}");
+    }
+}
+
+#[test]
+fn keys_open_the_chooser_load_pause_step_and_request_screenshots() {
+    let mut app = lab_with(Some("density_collisions"));
+    // Enter opens the chooser on the current scene; Down selects the next; Enter loads it.
+    press(&mut app, KeyCode::Enter);
+    let ui = app.world().resource::<LabUi>().clone();
+    assert!(ui.chooser_open);
+    let scenes = app.world().resource::<LabScenes>();
+    assert_eq!(scenes.at(ui.selected).unwrap().id, "density_collisions");
+    let next = scenes.at(ui.selected + 1).unwrap().id.clone();
+    press(&mut app, KeyCode::ArrowDown);
+    press(&mut app, KeyCode::Enter);
+    assert!(!app.world().resource::<LabUi>().chooser_open);
+    assert_eq!(state(&app), ActiveScene::scene(next.clone()));
+    // Escape closes the chooser without changing the scene.
+    press(&mut app, KeyCode::Enter);
+    press(&mut app, KeyCode::Escape);
+    assert!(!app.world().resource::<LabUi>().chooser_open);
+    assert_eq!(state(&app), ActiveScene::scene(next));
+
+    // P pauses: the simulated time stops.
+    press(&mut app, KeyCode::KeyP);
+    assert!(app.world().resource::<SpherePhysicsClock>().paused);
+    let paused_at = sim_time(&app);
+    for _ in 0..5 {
+        app.update();
+    }
+    assert_eq!(sim_time(&app), paused_at);
+    // N takes exactly one step.
+    let steps = |app: &App| app.world().resource::<SpherePhysicsDiagnostics>().steps;
+    let steps_before = steps(&app);
+    press(&mut app, KeyCode::KeyN);
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_eq!(steps(&app), steps_before + 1);
+    let dt = sim_time(&app) - paused_at;
+    // One fixed step: 1/60 s as Bevy's clock holds it, in whole nanoseconds.
+    assert!((dt - 1.0 / 60.0).abs() < 1e-9, "{dt}");
+    // P again resumes.
+    press(&mut app, KeyCode::KeyP);
+    app.update();
+    assert!(sim_time(&app) > paused_at + dt);
+
+    // Space asks for a screenshot at the current simulated time.
+    let mut cursor = app
+        .world()
+        .resource::<Messages<ScreenshotRequested>>()
+        .get_cursor_current();
+    press(&mut app, KeyCode::KeyP);
+    let now = sim_time(&app);
+    press(&mut app, KeyCode::Space);
+    let requests: Vec<ScreenshotRequested> = cursor
+        .read(app.world().resource::<Messages<ScreenshotRequested>>())
+        .copied()
+        .collect();
+    assert_eq!(requests, vec![ScreenshotRequested { time: now }]);
+}
+
+#[test]
+fn a_screenshot_is_saved_with_the_time_written_on_it() {
+    let dir = temp_dir("saved").join("created/if/missing");
+    let mut app = lab(LabPlugin {
+        scene_folder: None,
+        screenshots: ScreenshotSettings {
+            folder: dir.clone(),
+        },
+        ..default()
+    });
+    app.update();
+    let image = image::RgbaImage::from_pixel(320, 200, image::Rgba([30, 60, 200, 255]));
+    app.world_mut().write_message(FrameCaptured {
+        image,
+        time: 12.3456,
+    });
+    app.update();
+    let status = app.world().resource::<ScreenshotStatus>().clone();
+    let path = status.last.unwrap().unwrap();
+    assert_eq!(status.saved, 1);
+    assert!(path.starts_with(&dir));
+    let saved = image::open(&path).unwrap().to_rgba8();
+    assert_eq!(read_time_stamp(&saved), Some(12.346));
+    // The rest of the picture is untouched.
+    assert_eq!(saved.get_pixel(300, 10).0, [30, 60, 200, 255]);
+    // A second one does not overwrite the first.
+    app.world_mut().write_message(FrameCaptured {
+        image: image::RgbaImage::new(320, 200),
+        time: 0.5,
+    });
+    app.update();
+    let second = app
+        .world()
+        .resource::<ScreenshotStatus>()
+        .last
+        .clone()
+        .unwrap()
+        .unwrap();
+    assert_ne!(second, path);
+    assert!(path.exists() && second.exists());
+}
+
+#[test]
+fn a_screenshot_that_cannot_be_saved_is_reported_and_the_app_runs_on() {
+    // The folder would have to be inside a file.
+    let blocker = temp_dir("blocked");
+    std::fs::write(&blocker, b"a file, not a folder").unwrap();
+    let mut app = lab(LabPlugin {
+        screenshots: ScreenshotSettings {
+            folder: blocker.join("shots"),
+        },
+        scene_folder: Some(scene_folder()),
+        start: Some("density_collisions".into()),
+        ..default()
+    });
+    app.update();
+    app.world_mut().write_message(FrameCaptured {
+        image: image::RgbaImage::new(64, 64),
+        time: 1.0,
+    });
+    app.update();
+    let status = app.world().resource::<ScreenshotStatus>().clone();
+    assert_eq!((status.saved, status.failed), (0, 1));
+    let error = status.last.unwrap().unwrap_err();
+    assert!(error.contains("shots"), "{error}");
+    let t = sim_time(&app);
+    for _ in 0..5 {
+        app.update();
+    }
+    assert!(sim_time(&app) > t);
+    assert_eq!(spheres(&mut app).len(), 6);
+}
+
+#[test]
+fn stamps_read_back_exactly() {
+    for t in [0.0, 0.016, 1.1, 59.999, 123.456, 98765.432] {
+        let mut image = image::RgbaImage::from_pixel(400, 120, image::Rgba([200, 40, 40, 255]));
+        assert_eq!(read_time_stamp(&image), None);
+        stamp_time(&mut image, t);
+        assert_eq!(read_time_stamp(&image), Some(t), "{}", time_text(t));
+    }
+    // Too small to hold the text: left alone.
+    let mut tiny = image::RgbaImage::new(20, 20);
+    stamp_time(&mut tiny, 1.0);
+    assert!(tiny.pixels().all(|p| p.0 == [0, 0, 0, 0]));
+}
+
+#[test]
+fn command_line_flags() {
+    let args = |a: &[&str]| LabPlugin::default().with_args(a.iter().map(|s| s.to_string()));
+    let lab = args(&[
+        "--scene",
+        "newtons_cradle",
+        "--screenshot-at",
+        "1.5",
+        "--exit",
+        "--screenshot-dir",
+        "out",
+    ])
+    .unwrap();
+    assert_eq!(lab.start.as_deref(), Some("newtons_cradle"));
+    assert_eq!(lab.autopilot, Autopilot::new(Some(1.5), true));
+    assert_eq!(lab.screenshots.folder, PathBuf::from("out"));
+    assert!(
+        args(&["--screenshot-at", "soon"])
+            .unwrap_err()
+            .contains("soon")
+    );
+    assert!(args(&["--scene"]).unwrap_err().contains("--scene"));
+    assert!(args(&["--fast"]).unwrap_err().contains("--fast"));
+}
+
+#[test]
+fn unknown_start_scene_opens_the_chooser() {
+    let app = lab_with(Some("no_such_scene"));
+    assert_eq!(state(&app), ActiveScene::None);
+    assert!(app.world().resource::<LabUi>().chooser_open);
+}

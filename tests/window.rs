@@ -1,0 +1,187 @@
+//! Real windows: the lab and the Newton's cradle example run under `xvfb-run` with Mesa's CPU
+//! Vulkan driver, save a screenshot once the simulated time passes 1 s, and quit. The PNGs must
+//! show the scene's colours and the simulated time written on them. Needs `xvfb-run` and
+//! `mesa-vulkan-drivers`: `scripts/install-window-deps.sh` installs them (the README's test
+//! command runs it).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use image::RgbaImage;
+use sphere_lab::stamp::read_time_stamp;
+
+/// Runs `program` under a virtual X server, killing it after `limit`.
+fn run_in_window(program: &Path, args: &[&str], limit: Duration) -> Output {
+    let xvfb = Command::new("xvfb-run").arg("--help").output();
+    assert!(
+        xvfb.is_ok(),
+        "xvfb-run is missing: run scripts/install-window-deps.sh (the README's test command does)"
+    );
+    let mut child = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x720x24"])
+        .arg(program)
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start xvfb-run");
+    let start = Instant::now();
+    loop {
+        if child.try_wait().expect("wait").is_some() {
+            break;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let out = child.wait_with_output().unwrap();
+            panic!(
+                "{} did not finish within {limit:?}:\n{}",
+                program.display(),
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    child.wait_with_output().expect("output")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sphere_lab_window_{}_{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// The saved screenshot: the path the app printed.
+fn screenshot(out: &Output) -> RgbaImage {
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "exit {:?}\nstdout: {stdout}\nstderr: {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let path = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("screenshot "))
+        .unwrap_or_else(|| panic!("no screenshot line in {stdout}"));
+    image::open(path).expect("open the PNG").to_rgba8()
+}
+
+/// Pixels whose colour is clearly of one hue: `(blue, green, red, brown)`.
+fn hue_counts(image: &RgbaImage) -> (usize, usize, usize, usize) {
+    let mut counts = (0, 0, 0, 0);
+    for p in image.pixels() {
+        let [r, g, b, _] = p.0.map(i32::from);
+        if b > r + 60 && b > g + 40 {
+            counts.0 += 1;
+        } else if g > r + 50 && g > b + 50 {
+            counts.1 += 1;
+        } else if r > g + 70 && r > b + 70 {
+            counts.2 += 1;
+        } else if r > g + 8 && g > b + 4 && r > 40 && r < 160 && r - b > 20 {
+            counts.3 += 1;
+        }
+    }
+    counts
+}
+
+/// `cargo test` builds the examples into `target/<profile>/examples/`, next to the test
+/// binaries' folder: as `name`, or as `name-<hash>` (the newest is taken).
+fn example(name: &str) -> PathBuf {
+    let exe = std::env::current_exe().unwrap();
+    let folder = exe
+        .parent()
+        .and_then(Path::parent)
+        .unwrap()
+        .join("examples");
+    let plain = folder.join(name);
+    if plain.exists() {
+        return plain;
+    }
+    let prefix = format!("{name}-");
+    std::fs::read_dir(&folder)
+        .into_iter()
+        .flatten()
+        .filter_map(|e| e.ok())
+        .filter(|e| {
+            let file = e.file_name().to_string_lossy().into_owned();
+            file.strip_prefix(&prefix)
+                .is_some_and(|hash| hash.chars().all(|c| c.is_ascii_hexdigit()))
+        })
+        .max_by_key(|e| e.metadata().and_then(|m| m.modified()).ok())
+        .map_or(plain, |e| e.path())
+}
+
+#[test]
+fn lab_and_cradle_in_a_real_window() {
+    let limit = Duration::from_secs(300);
+
+    // The lab opened on the tutorial's scene 2: blue, green and red spheres.
+    let dir = temp_dir("density");
+    let out = run_in_window(
+        Path::new(env!("CARGO_BIN_EXE_sphere_lab")),
+        &[
+            "--scene",
+            "density_collisions",
+            "--screenshot-at",
+            "1",
+            "--exit",
+            "--screenshot-dir",
+            dir.to_str().unwrap(),
+        ],
+        limit,
+    );
+    let image = screenshot(&out);
+    assert_eq!((image.width(), image.height()), (1280, 720));
+    let time = read_time_stamp(&image).expect("the time is written on the screenshot");
+    assert!((1.0..3600.0).contains(&time), "{time}");
+    let (blue, green, red, _) = hue_counts(&image);
+    assert!(
+        blue > 1000 && green > 1000 && red > 1000,
+        "blue {blue}, green {green}, red {red}"
+    );
+
+    // The Newton's cradle example: blue balls on a wooden frame, the time written on it.
+    let cradle = example("newtons_cradle");
+    assert!(
+        cradle.exists(),
+        "{} is built by cargo test",
+        cradle.display()
+    );
+    let dir = temp_dir("cradle");
+    let out = run_in_window(
+        &cradle,
+        &[
+            "--screenshot-at",
+            "1",
+            "--exit",
+            "--screenshot-dir",
+            dir.to_str().unwrap(),
+        ],
+        limit,
+    );
+    let image = screenshot(&out);
+    assert!(read_time_stamp(&image).is_some_and(|t| t >= 1.0));
+    let (blue, green, red, brown) = hue_counts(&image);
+    assert!(blue > 3000, "blue {blue}");
+    assert!(brown > 2000, "frame {brown}");
+    assert!(green < 100 && red < 100, "green {green}, red {red}");
+
+    // A folder that cannot be made: the failure is reported (exit code 1 with --exit).
+    let blocker = temp_dir("blocked");
+    std::fs::write(&blocker, b"a file").unwrap();
+    let out = run_in_window(
+        &cradle,
+        &[
+            "--screenshot-at",
+            "0.5",
+            "--exit",
+            "--screenshot-dir",
+            blocker.join("shots").to_str().unwrap(),
+        ],
+        limit,
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("screenshot failed"), "{stderr}");
+}

@@ -103,6 +103,7 @@ fn frame_scene(
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn orbit(
     mut cameras: Query<(&mut OrbitCamera, &mut Transform)>,
     motion: Res<AccumulatedMouseMotion>,

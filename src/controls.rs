@@ -176,6 +176,7 @@ impl Autopilot {
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn autopilot(
     mut pilot: ResMut<Autopilot>,
     state: Res<State<ActiveScene>>,

@@ -193,8 +193,10 @@ fn open_start_scene(
 /// [`LabPlugin::with_args`]). `start` opens straight into that scene; `--scene` overrides it.
 #[cfg(feature = "render")]
 pub fn lab_app(start: Option<&str>) -> App {
-    let mut lab = LabPlugin::default();
-    lab.start = start.map(str::to_owned);
+    let lab = LabPlugin {
+        start: start.map(str::to_owned),
+        ..default()
+    };
     let lab = match lab.with_args(std::env::args().skip(1)) {
         Ok(lab) => lab,
         Err(e) => {

@@ -279,19 +279,19 @@ pub fn spawn_spheres(commands: &mut Commands, spheres: &[SphereSpec]) {
     }
 }
 
+/// Top-level entities with a `Transform` that belong to no scene yet.
+type Unscoped = (
+    With<Transform>,
+    Without<ChildOf>,
+    Without<DespawnOnExit<ActiveScene>>,
+    Without<LabPersistent>,
+);
+
 /// Ties every new top-level entity with a `Transform` to the scene being entered.
 fn scope_scene_entities(
     mut commands: Commands,
     state: Res<State<ActiveScene>>,
-    new: Query<
-        Entity,
-        (
-            With<Transform>,
-            Without<ChildOf>,
-            Without<DespawnOnExit<ActiveScene>>,
-            Without<LabPersistent>,
-        ),
-    >,
+    new: Query<Entity, Unscoped>,
 ) {
     for entity in &new {
         commands

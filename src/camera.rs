@@ -9,7 +9,7 @@ use bevy_egui::EguiContexts;
 use bevy_sphere_physics::prelude::*;
 
 use crate::controls::LabUi;
-use crate::render::WALL_RADIUS;
+use crate::render::scene_bounds;
 use crate::scenes::{ActiveScene, LabPersistent};
 
 /// Where the camera looks from: `distance` from `target`, turned `yaw` radians about the
@@ -69,25 +69,19 @@ fn spawn_camera(mut commands: Commands) {
 
 /// Frames the spheres (and anchors) of a scene just entered.
 fn frame_scene(
-    spheres: Query<(&Transform, &SphereBody, Option<&Tethered>), Without<OrbitCamera>>,
+    spheres: Query<(&Transform, &SphereBody, Has<FixedSphere>, Option<&Tethered>)>,
     mut cameras: Query<(&mut OrbitCamera, &Projection)>,
 ) {
-    let mut low = Vec3::splat(f32::INFINITY);
-    let mut high = Vec3::splat(f32::NEG_INFINITY);
-    for (transform, body, tether) in &spheres {
-        if body.radius > WALL_RADIUS {
-            continue;
-        }
-        low = low.min(transform.translation - body.radius as f32);
-        high = high.max(transform.translation + body.radius as f32);
-        if let Some(t) = tether {
-            low = low.min(t.anchor.as_vec3());
-            high = high.max(t.anchor.as_vec3());
-        }
-    }
-    if !low.is_finite() {
+    let Some((low, high)) = scene_bounds(spheres.iter().map(|(t, b, fixed, tether)| {
+        (
+            t.translation,
+            b.radius as f32,
+            fixed,
+            tether.map(|t| t.anchor.as_vec3()),
+        )
+    })) else {
         return;
-    }
+    };
     for (mut orbit, projection) in &mut cameras {
         let fov = match projection {
             Projection::Perspective(p) => p.fov,

@@ -155,14 +155,16 @@ pub(crate) fn apply_actions(
 }
 
 /// Unattended runs (`--screenshot-at`, `--exit`): take a screenshot once the simulated time
-/// reaches a mark, and quit once it is saved or has failed.
+/// reaches a mark, and quit once it is saved or has failed, printing `scene ID` and
+/// `screenshot PATH` on standard output (or the error on standard error).
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct Autopilot {
     /// Take a screenshot once the simulated time reaches this many seconds.
     pub screenshot_at: Option<f64>,
     /// Quit after that screenshot was saved (exit code 0) or failed (exit code 1).
     pub exit_after_screenshot: bool,
-    requested: bool,
+    /// Screenshots saved and failed when the autopilot asked for its own; `None` before.
+    requested: Option<u32>,
 }
 
 impl Autopilot {
@@ -171,7 +173,7 @@ impl Autopilot {
         Self {
             screenshot_at,
             exit_after_screenshot,
-            requested: false,
+            requested: None,
         }
     }
 }
@@ -191,16 +193,21 @@ pub(crate) fn autopilot(
         return;
     };
     *frames += 1;
-    if !pilot.requested {
+    let outcomes = status.saved + status.failed;
+    let Some(before) = pilot.requested else {
         // A few frames first, so the window and the panels have been drawn; without a scene
         // the time stays 0 and the chooser is captured.
         let ready = ready.is_none_or(|r| r.frames >= 10);
-        if ready && *frames > 3 && (physics.world.time() >= at || *state.get() == ActiveScene::None)
-        {
-            pilot.requested = true;
+        let due = physics.world.time() >= at || *state.get() == ActiveScene::None;
+        if ready && *frames > 3 && due {
+            pilot.requested = Some(outcomes);
             actions.write(LabAction::Screenshot);
         }
-    } else if pilot.exit_after_screenshot {
+        return;
+    };
+    // Quit on this screenshot's outcome, not on an earlier one.
+    if pilot.exit_after_screenshot && outcomes > before {
+        println!("scene {}", state.get().id().unwrap_or(""));
         match &status.last {
             Some(Ok(path)) => {
                 println!("screenshot {}", path.display());

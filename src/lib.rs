@@ -137,6 +137,7 @@ impl Plugin for LabPlugin {
             .add_message::<ScreenshotRequested>()
             .add_message::<FrameCaptured>()
             .init_state::<ActiveScene>()
+            .add_observer(scenes::scope_new_entity::<Transform>)
             .configure_sets(
                 Update,
                 (LabSystems::Input, LabSystems::Act, LabSystems::Save).chain(),
@@ -149,6 +150,8 @@ impl Plugin for LabPlugin {
                     screenshot::save_captured_frames.in_set(LabSystems::Save),
                 ),
             );
+        #[cfg(feature = "render")]
+        app.add_observer(scenes::scope_new_entity::<Node>);
         if let Some(folder) = &self.scene_folder {
             for file in scenes::scene_files(folder) {
                 app.add_lab_scene_file(file);
@@ -197,7 +200,14 @@ pub fn lab_app(start: Option<&str>) -> App {
         start: start.map(str::to_owned),
         ..default()
     };
-    let lab = match lab.with_args(std::env::args().skip(1)) {
+    let args: Result<Vec<String>, _> = std::env::args_os()
+        .skip(1)
+        .map(|a| {
+            a.into_string()
+                .map_err(|a| format!("argument {a:?} is not UTF-8"))
+        })
+        .collect();
+    let lab = match args.and_then(|args| lab.with_args(args)) {
         Ok(lab) => lab,
         Err(e) => {
             eprintln!("{e}");

@@ -7,8 +7,9 @@ use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::state::state::StateTransitionEvent;
 use bevy_sphere_physics::prelude::*;
 
+use crate::LabSystems;
 use crate::scenes::{ActiveScene, LabPersistent};
-use crate::screenshot::{FrameCaptured, RenderReady, ScreenshotRequested};
+use crate::screenshot::{FrameCaptured, RenderReady, ScreenshotRequested, ScreenshotStatus};
 use bevy::render::render_resource::PipelineCache;
 use bevy::render::{MainWorld, RenderApp};
 
@@ -53,10 +54,12 @@ impl Plugin for LabRenderPlugin {
                     dress_strings,
                     place_strings,
                     build_stage.run_if(on_message::<StateTransitionEvent<ActiveScene>>),
-                    capture_frames,
                 )
                     .chain(),
-            );
+            )
+            // In the frame the request is made, so the stamped time is the frame's.
+            .add_systems(Update, capture_frames.after(LabSystems::Act))
+            .add_systems(PreUpdate, hold_until_drawn);
     }
 }
 
@@ -211,6 +214,38 @@ fn place_strings(
     }
 }
 
+/// The box a scene's camera and ground are fitted to: the moving spheres and the anchors of
+/// their strings, and the fixed spheres no larger than twice that box (a dome, not a planet
+/// used as the ground, nor the walls of a box). `None` without spheres.
+pub fn scene_bounds<'a>(
+    spheres: impl Iterator<Item = (Vec3, f32, bool, Option<Vec3>)> + Clone + 'a,
+) -> Option<(Vec3, Vec3)> {
+    let mut low = Vec3::splat(f32::INFINITY);
+    let mut high = Vec3::splat(f32::NEG_INFINITY);
+    for (centre, r, fixed, anchor) in spheres.clone() {
+        if !fixed {
+            low = low.min(centre - r);
+            high = high.max(centre + r);
+        }
+        if let Some(anchor) = anchor {
+            low = low.min(anchor);
+            high = high.max(anchor);
+        }
+    }
+    let limit = if low.is_finite() {
+        2.0 * (high - low).max_element().max(1.0)
+    } else {
+        WALL_RADIUS as f32
+    };
+    for (centre, r, fixed, _) in spheres {
+        if fixed && r <= limit {
+            low = low.min(centre - r);
+            high = high.max(centre + r);
+        }
+    }
+    low.is_finite().then_some((low, high))
+}
+
 /// A rod between two points.
 fn rod(assets: &LabAssets, from: Vec3, to: Vec3, width: f32) -> impl Bundle {
     let along = to - from;
@@ -231,36 +266,35 @@ fn build_stage(
     mut commands: Commands,
     assets: Res<LabAssets>,
     state: Res<State<ActiveScene>>,
-    spheres: Query<(&Transform, &SphereBody, Option<&Tethered>)>,
+    spheres: Query<(&Transform, &SphereBody, Has<FixedSphere>, Option<&Tethered>)>,
 ) {
     if *state.get() == ActiveScene::None {
         return;
     }
     let scope = DespawnOnExit(state.get().clone());
-    let mut low = Vec3::splat(f32::INFINITY);
-    let mut high = Vec3::splat(f32::NEG_INFINITY);
+    let Some((low, high)) = scene_bounds(spheres.iter().map(|(t, b, fixed, tether)| {
+        (
+            t.translation,
+            b.radius as f32,
+            fixed,
+            tether.map(|t| t.anchor.as_vec3()),
+        )
+    })) else {
+        return;
+    };
     let mut anchors = Vec::new();
     let mut smallest = f32::INFINITY;
     // How far a tethered sphere swings out sideways beyond its anchor (as far as it starts).
     let mut reach = 0.0f32;
-    for (transform, body, tether) in &spheres {
-        if body.radius > WALL_RADIUS {
-            continue;
-        }
+    for (transform, body, _, tether) in &spheres {
         let r = body.radius as f32;
-        low = low.min(transform.translation - r);
-        high = high.max(transform.translation + r);
         smallest = smallest.min(r);
         if let Some(t) = tether {
             anchors.push(t.anchor.as_vec3());
             reach = reach.max((transform.translation.x - t.anchor.x as f32).abs() + r);
-            low = low.min(t.anchor.as_vec3());
-            high = high.max(t.anchor.as_vec3());
         }
     }
-    if !low.is_finite() {
-        return;
-    }
+
     let extent = (high - low).max_element().max(1.0);
     let ground = low.y - 0.25 * extent;
     let centre = (low + high) / 2.0;
@@ -298,7 +332,9 @@ fn capture_frames(mut commands: Commands, mut requests: MessageReader<Screenshot
     for request in requests.read() {
         let time = request.time;
         commands.spawn(Screenshot::primary_window()).observe(
-            move |captured: On<ScreenshotCaptured>, mut frames: MessageWriter<FrameCaptured>| {
+            move |captured: On<ScreenshotCaptured>,
+                  mut frames: MessageWriter<FrameCaptured>,
+                  mut status: ResMut<ScreenshotStatus>| {
                 match captured.image.clone().try_into_dynamic() {
                     Ok(image) => {
                         let mut image = image.to_rgba8();
@@ -306,10 +342,26 @@ fn capture_frames(mut commands: Commands, mut requests: MessageReader<Screenshot
                         image.pixels_mut().for_each(|p| p.0[3] = 255);
                         frames.write(FrameCaptured { image, time });
                     }
-                    Err(e) => error!("screenshot: cannot read the captured frame: {e}"),
+                    Err(e) => {
+                        let e = format!("cannot read the captured frame: {e}");
+                        error!("screenshot failed: {e}");
+                        status.failed += 1;
+                        status.last = Some(Err(e));
+                    }
                 }
             },
         );
+    }
+}
+
+/// Holds Bevy's virtual clock (so the physics) while shaders compile: a scene starts moving
+/// when it can be seen, not seconds earlier on a slow (or software) renderer.
+fn hold_until_drawn(ready: Res<RenderReady>, mut time: ResMut<Time<Virtual>>) {
+    let drawing = ready.frames >= 2;
+    if drawing && time.is_paused() {
+        time.unpause();
+    } else if !drawing && !time.is_paused() {
+        time.pause();
     }
 }
 

@@ -156,20 +156,21 @@ pub enum LabSceneSystems {
     Reset,
     /// The scene's own systems spawn its entities.
     Build,
-    /// Every new entity with a `Transform` is tied to the scene, so it is despawned on exit.
-    Scope,
 }
 
-/// Entities that outlive scenes (the camera, lights): never despawned on a scene change.
+/// Entities spawned while a scene is shown that outlive it (a game's own camera, say): never
+/// despawned on a scene change. Entities spawned while no scene is shown (at startup) outlive
+/// scenes without it.
 #[derive(Component, Clone, Copy, Debug, Default)]
 pub struct LabPersistent;
 
 /// Registering scenes on the [`App`].
 pub trait LabAppExt {
     /// Adds a scene to the chooser: `build` (one or more systems) runs when it is entered and
-    /// spawns its entities. Every entity with a `Transform` and no parent that exists after
-    /// `build` ran, and is not [`LabPersistent`], belongs to the scene and is despawned when it
-    /// is left. A second scene with an id already registered is ignored, with a warning.
+    /// spawns its entities. Every top-level entity with a `Transform` (or a UI `Node`) spawned
+    /// while a scene is shown, by `build` or later, belongs to that scene and is despawned when
+    /// it is left, unless it is [`LabPersistent`]. A scene whose id is already registered, or
+    /// whose step or restitution is invalid, is left out and listed in [`LabScenes::errors`].
     fn add_lab_scene<M>(
         &mut self,
         scene: LabScene,
@@ -188,11 +189,25 @@ impl LabAppExt for App {
         build: impl IntoScheduleConfigs<ScheduleSystem, M>,
     ) -> &mut Self {
         let mut scenes = self.world_mut().get_resource_or_init::<LabScenes>();
-        if scenes.get(&scene.id).is_some() {
-            warn!(
-                "a scene with id {:?} is already registered; ignored",
-                scene.id
-            );
+        let problem = if scenes.get(&scene.id).is_some() {
+            Some("a scene with this id is already registered".to_owned())
+        } else if !(scene.dt.is_finite() && (1e-6..=1.0).contains(&scene.dt)) {
+            Some(format!(
+                "dt {} is not a step in seconds in [1e-6, 1]",
+                scene.dt
+            ))
+        } else if !(0.0..=1.0).contains(&scene.restitution) {
+            Some(format!(
+                "restitution {} is outside [0, 1]",
+                scene.restitution
+            ))
+        } else {
+            None
+        };
+        if let Some(problem) = problem {
+            let error = format!("scene {:?} left out: {problem}", scene.id);
+            warn!("{error}");
+            scenes.errors.push(error);
             return self;
         }
         scenes.scenes.push(scene.clone());
@@ -205,19 +220,13 @@ impl LabAppExt for App {
         };
         self.configure_sets(
             schedule.clone(),
-            (
-                LabSceneSystems::Reset,
-                LabSceneSystems::Build,
-                LabSceneSystems::Scope,
-            )
-                .chain(),
+            (LabSceneSystems::Reset, LabSceneSystems::Build).chain(),
         )
         .add_systems(
             schedule,
             (
                 reset.in_set(LabSceneSystems::Reset),
                 build.in_set(LabSceneSystems::Build),
-                scope_scene_entities.in_set(LabSceneSystems::Scope),
             ),
         )
     }
@@ -251,13 +260,15 @@ impl LabAppExt for App {
     }
 }
 
-/// Spawns one entity per sphere of a scene file, named as in the file.
+/// Spawns one entity per sphere of a scene file, named as in the file, joining the simulation
+/// in the file's order ([`SphereOrder`]), so a restart repeats the first run exactly.
 pub fn spawn_spheres(commands: &mut Commands, spheres: &[SphereSpec]) {
     for (i, s) in spheres.iter().enumerate() {
         let position = DVec3::from_array(s.position);
         let mut entity = commands.spawn((
             Name::new(s.name.clone().unwrap_or_else(|| format!("sphere {i}"))),
             SphereBody::new(s.radius),
+            SphereOrder(i as u64),
             SpherePosition(position),
             Transform::from_translation(position.as_vec3()),
             SphereVelocity(DVec3::from_array(s.velocity)),
@@ -279,24 +290,28 @@ pub fn spawn_spheres(commands: &mut Commands, spheres: &[SphereSpec]) {
     }
 }
 
-/// Top-level entities with a `Transform` that belong to no scene yet.
-type Unscoped = (
-    With<Transform>,
-    Without<ChildOf>,
-    Without<DespawnOnExit<ActiveScene>>,
-    Without<LabPersistent>,
-);
-
-/// Ties every new top-level entity with a `Transform` to the scene being entered.
-fn scope_scene_entities(
+/// Ties a new top-level entity with a `Transform` or a UI `Node` to the scene being shown (an
+/// observer: it sees entities the scene spawns on entering and at any time after).
+pub(crate) fn scope_new_entity<C: Component>(
+    added: On<Add, C>,
+    state: Option<Res<State<ActiveScene>>>,
+    entities: Query<
+        (),
+        (
+            Without<ChildOf>,
+            Without<LabPersistent>,
+            Without<DespawnOnExit<ActiveScene>>,
+        ),
+    >,
     mut commands: Commands,
-    state: Res<State<ActiveScene>>,
-    new: Query<Entity, Unscoped>,
 ) {
-    for entity in &new {
+    let Some(state) = state else {
+        return;
+    };
+    if *state.get() != ActiveScene::None && entities.contains(added.entity) {
         commands
-            .entity(entity)
-            .insert(DespawnOnExit(state.get().clone()));
+            .entity(added.entity)
+            .try_insert(DespawnOnExit(state.get().clone()));
     }
 }
 

@@ -149,11 +149,16 @@ fn a_game_adds_a_scene_with_one_call_and_a_broken_file_says_where() {
     let scenes = app.world().resource::<LabScenes>();
     assert_eq!(scenes.len(), 1);
     assert_eq!(scenes.get("marbles").unwrap().name, "Marbles");
-    assert_eq!(scenes.errors.len(), 1);
+    assert_eq!(scenes.errors.len(), 2, "{:?}", scenes.errors);
     assert!(
-        scenes.errors[0].contains("broken.ron:3:"),
+        scenes.errors[0].contains("already registered"),
         "{}",
         scenes.errors[0]
+    );
+    assert!(
+        scenes.errors[1].contains("broken.ron:3:"),
+        "{}",
+        scenes.errors[1]
     );
 
     app.world_mut()
@@ -413,4 +418,157 @@ fn unknown_start_scene_opens_the_chooser() {
     let app = lab_with(Some("no_such_scene"));
     assert_eq!(state(&app), ActiveScene::None);
     assert!(app.world().resource::<LabUi>().chooser_open);
+}
+
+#[derive(Component)]
+struct Spark;
+
+#[derive(Component)]
+struct GameCamera;
+
+/// A sphere spawned by a scene's own system while it runs.
+fn spawn_spark(
+    mut commands: Commands,
+    sparks: Query<(), With<Spark>>,
+    state: Res<State<ActiveScene>>,
+) {
+    if *state.get() == ActiveScene::scene("marbles") && sparks.is_empty() {
+        commands.spawn((
+            Spark,
+            SphereBody::new(0.05),
+            Transform::from_xyz(0.0, 3.0, 0.0),
+        ));
+        commands.spawn((Spark, Node::default()));
+    }
+}
+
+#[test]
+fn everything_a_scene_spawns_is_gone_after_it_and_startup_entities_stay() {
+    let mut app = lab(LabPlugin {
+        scene_folder: Some(scene_folder()),
+        ..default()
+    });
+    app.add_systems(Startup, |mut commands: Commands| {
+        commands.spawn((GameCamera, Transform::default()));
+    })
+    .add_systems(Update, spawn_spark)
+    .add_lab_scene(
+        LabScene::new("marbles", "Marbles", "Two marbles."),
+        |mut commands: Commands| {
+            commands.spawn((
+                Marble,
+                SphereBody::new(0.1),
+                Transform::from_xyz(-1.0, 0.0, 0.0),
+            ));
+            commands.spawn((
+                Marble,
+                SphereBody::new(0.1),
+                Transform::from_xyz(1.0, 0.0, 0.0),
+            ));
+        },
+    );
+    app.update();
+    app.world_mut()
+        .write_message(LabAction::Load("marbles".into()));
+    for _ in 0..4 {
+        app.update();
+    }
+    let count = |app: &mut App, f: fn(&mut App) -> usize| f(app);
+    let sparks = |app: &mut App| {
+        let mut q = app.world_mut().query_filtered::<(), With<Spark>>();
+        q.iter(app.world()).count()
+    };
+    let marbles = |app: &mut App| {
+        let mut q = app.world_mut().query_filtered::<(), With<Marble>>();
+        q.iter(app.world()).count()
+    };
+    let cameras = |app: &mut App| {
+        let mut q = app.world_mut().query_filtered::<(), With<GameCamera>>();
+        q.iter(app.world()).count()
+    };
+    assert_eq!(count(&mut app, sparks), 2);
+    assert_eq!(count(&mut app, marbles), 2);
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 3);
+
+    app.world_mut()
+        .write_message(LabAction::Load("two_spheres".into()));
+    app.update();
+    app.update();
+    assert_eq!(state(&app), ActiveScene::scene("two_spheres"));
+    assert_eq!(
+        count(&mut app, sparks),
+        0,
+        "spawned by the scene later: gone too"
+    );
+    assert_eq!(count(&mut app, marbles), 0);
+    assert_eq!(count(&mut app, cameras), 1, "spawned at startup: stays");
+    app.update();
+    // Only the new scene's spheres are simulated.
+    assert_eq!(
+        app.world().resource::<SpherePhysicsWorld>().world.len(),
+        spheres(&mut app).len()
+    );
+    assert_eq!(spheres(&mut app).len(), 2);
+}
+
+#[test]
+fn a_scene_with_a_bad_step_or_restitution_is_listed_as_an_error_not_a_panic() {
+    let mut app = lab(LabPlugin {
+        scene_folder: None,
+        ..default()
+    });
+    app.add_lab_scene(LabScene::new("zero", "Zero", "dt 0").dt(0.0), || {})
+        .add_lab_scene(LabScene::new("nan", "NaN", "dt NaN").dt(f64::NAN), || {})
+        .add_lab_scene(
+            LabScene::new("bouncy", "Bouncy", "e 2").restitution(2.0),
+            || {},
+        );
+    app.update();
+    let scenes = app.world().resource::<LabScenes>();
+    assert!(scenes.is_empty());
+    assert_eq!(scenes.errors.len(), 3);
+    assert!(scenes.errors[0].contains("zero") && scenes.errors[0].contains("dt"));
+    assert!(scenes.errors[2].contains("restitution"));
+    app.world_mut()
+        .write_message(LabAction::Load("zero".into()));
+    app.update();
+    app.update();
+    assert_eq!(state(&app), ActiveScene::None);
+}
+
+/// Positions and velocities of every sphere, in body order, after exactly `steps` steps.
+fn run_for(app: &mut App, steps: u64) -> Vec<[f64; 6]> {
+    for _ in 0..10 * steps {
+        if app.world().resource::<SpherePhysicsDiagnostics>().steps >= steps {
+            break;
+        }
+        app.update();
+    }
+    assert_eq!(
+        app.world().resource::<SpherePhysicsDiagnostics>().steps,
+        steps
+    );
+    app.world()
+        .resource::<SpherePhysicsWorld>()
+        .world
+        .bodies()
+        .iter()
+        .map(|b| {
+            let (p, v) = (b.position(), b.velocity());
+            [p.x, p.y, p.z, v.x, v.y, v.z]
+        })
+        .collect()
+}
+
+#[test]
+fn a_restart_repeats_the_first_run_bit_for_bit() {
+    for id in ["newtons_cradle", "touching_cradle"] {
+        let mut app = lab_with(Some(id));
+        let first = run_for(&mut app, 90);
+        press(&mut app, KeyCode::KeyR);
+        let steps = app.world().resource::<SpherePhysicsDiagnostics>().steps;
+        assert!(steps < 3, "{id}: restarted");
+        let second = run_for(&mut app, 90);
+        assert_eq!(first, second, "{id}");
+    }
 }

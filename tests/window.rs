@@ -5,44 +5,61 @@
 //! command runs it).
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
 use image::RgbaImage;
 use sphere_lab::stamp::read_time_stamp;
 
-/// Runs `program` under a virtual X server, killing it after `limit`.
+/// Runs `program` under a virtual X server, killing it (and its X server) after `limit`.
+/// Output goes to files, so a chatty program never blocks on a full pipe.
 fn run_in_window(program: &Path, args: &[&str], limit: Duration) -> Output {
+    use std::os::unix::process::CommandExt;
     let xvfb = Command::new("xvfb-run").arg("--help").output();
     assert!(
         xvfb.is_ok(),
         "xvfb-run is missing: run scripts/install-window-deps.sh (the README's test command does)"
     );
+    let logs = temp_dir(&format!(
+        "logs_{}",
+        program.file_name().unwrap().to_string_lossy()
+    ));
+    std::fs::create_dir_all(&logs).unwrap();
+    let (out_path, err_path) = (logs.join("stdout"), logs.join("stderr"));
     let mut child = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x720x24"])
         .arg(program)
         .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
+        .env("RUST_LOG", "warn")
+        .stdout(std::fs::File::create(&out_path).unwrap())
+        .stderr(std::fs::File::create(&err_path).unwrap())
+        .process_group(0)
         .spawn()
         .expect("start xvfb-run");
     let start = Instant::now();
-    loop {
-        if child.try_wait().expect("wait").is_some() {
-            break;
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
         }
         if start.elapsed() > limit {
-            let _ = child.kill();
-            let out = child.wait_with_output().unwrap();
+            let group = format!("-{}", child.id());
+            let _ = Command::new("kill").args(["-KILL", "--", &group]).status();
+            let _ = child.wait();
             panic!(
                 "{} did not finish within {limit:?}:\n{}",
                 program.display(),
-                String::from_utf8_lossy(&out.stderr)
+                std::fs::read_to_string(&err_path).unwrap_or_default()
             );
         }
         std::thread::sleep(Duration::from_millis(100));
-    }
-    child.wait_with_output().expect("output")
+    };
+    let output = Output {
+        status,
+        stdout: std::fs::read(&out_path).unwrap_or_default(),
+        stderr: std::fs::read(&err_path).unwrap_or_default(),
+    };
+    let _ = std::fs::remove_dir_all(&logs);
+    output
 }
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -112,26 +129,33 @@ fn example(name: &str) -> PathBuf {
         .map_or(plain, |e| e.path())
 }
 
-#[test]
-fn lab_and_cradle_in_a_real_window() {
-    let limit = Duration::from_secs(300);
+/// The scene the app said it showed when it quit.
+fn scene_shown(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .find_map(|l| l.strip_prefix("scene ").map(str::to_owned))
+        .unwrap_or_default()
+}
 
-    // The lab opened on the tutorial's scene 2: blue, green and red spheres.
-    let dir = temp_dir("density");
-    let out = run_in_window(
-        Path::new(env!("CARGO_BIN_EXE_sphere_lab")),
-        &[
-            "--scene",
-            "density_collisions",
-            "--screenshot-at",
-            "1",
-            "--exit",
-            "--screenshot-dir",
-            dir.to_str().unwrap(),
-        ],
-        limit,
+fn unattended(program: &Path, extra: &[&str], at: &str, dir: &Path) -> Output {
+    let mut args = extra.to_vec();
+    args.extend(["--screenshot-at", at, "--exit", "--screenshot-dir"]);
+    args.push(dir.to_str().unwrap());
+    run_in_window(program, &args, Duration::from_secs(300))
+}
+
+#[test]
+fn lab_and_examples_in_a_real_window() {
+    // The lab opened on the tutorial's scene 2: blue, green and red spheres, the time on it.
+    let lab = Path::new(env!("CARGO_BIN_EXE_sphere_lab"));
+    let out = unattended(
+        lab,
+        &["--scene", "density_collisions"],
+        "1",
+        &temp_dir("density"),
     );
     let image = screenshot(&out);
+    assert_eq!(scene_shown(&out), "density_collisions");
     assert_eq!((image.width(), image.height()), (1280, 720));
     let time = read_time_stamp(&image).expect("the time is written on the screenshot");
     assert!((1.0..3600.0).contains(&time), "{time}");
@@ -141,46 +165,44 @@ fn lab_and_cradle_in_a_real_window() {
         "blue {blue}, green {green}, red {red}"
     );
 
-    // The Newton's cradle example: blue balls on a wooden frame, the time written on it.
+    // The Newton's cradle example: blue balls on a wooden frame.
     let cradle = example("newtons_cradle");
     assert!(
         cradle.exists(),
         "{} is built by cargo test",
         cradle.display()
     );
-    let dir = temp_dir("cradle");
-    let out = run_in_window(
-        &cradle,
-        &[
-            "--screenshot-at",
-            "1",
-            "--exit",
-            "--screenshot-dir",
-            dir.to_str().unwrap(),
-        ],
-        limit,
-    );
+    let out = unattended(&cradle, &[], "1", &temp_dir("cradle"));
     let image = screenshot(&out);
+    assert_eq!(scene_shown(&out), "newtons_cradle");
     assert!(read_time_stamp(&image).is_some_and(|t| t >= 1.0));
     let (blue, green, red, brown) = hue_counts(&image);
     assert!(blue > 3000, "blue {blue}");
     assert!(brown > 2000, "frame {brown}");
     assert!(green < 100 && red < 100, "green {green}, red {red}");
 
+    // Every other example opens its own scene and draws it; `lab` opens the chooser.
+    for (name, scene) in [
+        ("density_collisions", "density_collisions"),
+        ("applied_forces", "applied_forces"),
+        ("sphere_shower", "sphere_shower"),
+        ("lab", ""),
+    ] {
+        let program = example(name);
+        let out = unattended(&program, &[], "0.2", &temp_dir(name));
+        let image = screenshot(&out);
+        assert_eq!(scene_shown(&out), scene, "{name}");
+        assert!(read_time_stamp(&image).is_some(), "{name}");
+        if !scene.is_empty() {
+            let (blue, ..) = hue_counts(&image);
+            assert!(blue > 500, "{name}: blue {blue}");
+        }
+    }
+
     // A folder that cannot be made: the failure is reported (exit code 1 with --exit).
     let blocker = temp_dir("blocked");
     std::fs::write(&blocker, b"a file").unwrap();
-    let out = run_in_window(
-        &cradle,
-        &[
-            "--screenshot-at",
-            "0.5",
-            "--exit",
-            "--screenshot-dir",
-            blocker.join("shots").to_str().unwrap(),
-        ],
-        limit,
-    );
+    let out = unattended(&cradle, &[], "0.5", &blocker.join("shots"));
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("screenshot failed"), "{stderr}");

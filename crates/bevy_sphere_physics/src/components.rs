@@ -94,6 +94,15 @@ pub struct Tethered {
     pub length: f64,
 }
 
+/// Optional: the order in which spheres that join the simulation at the same fixed step get
+/// their bodies (lower first; spheres without it follow, in entity order). Body ids decide the
+/// order in which contacts at one instant are listed, so give it to spheres spawned together
+/// when a run must repeat bit for bit whatever entities Bevy hands out (a restart reuses freed
+/// entities in another order).
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[reflect(Component)]
+pub struct SphereOrder(pub u64);
+
 /// Opts one sphere out of interpolation: its `Transform` jumps from fixed step to fixed step.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
 #[reflect(Component)]

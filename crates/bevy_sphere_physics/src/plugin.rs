@@ -129,6 +129,7 @@ impl Plugin for SpherePhysicsPlugin {
             .register_type::<FixedSphere>()
             .register_type::<Tethered>()
             .register_type::<NoInterpolation>()
+            .register_type::<SphereOrder>()
             .register_type::<SpherePhysicsClock>()
             .configure_sets(
                 FixedUpdate,

@@ -103,6 +103,7 @@ fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool
 
 /// [`SpherePhysicsSystems::Prepare`](crate::SpherePhysicsSystems::Prepare): removes despawned
 /// spheres, adds new ones, applies changes made by game systems, and rejects invalid ones.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn prepare(
     mut commands: Commands,
     mut physics: ResMut<SpherePhysicsWorld>,
@@ -110,6 +111,7 @@ pub(crate) fn prepare(
     spheres: Query<SphereQuery>,
     options: Res<PluginOptions>,
     mut rejected: MessageWriter<SphereRejected>,
+    orders: Query<&SphereOrder>,
 ) {
     let physics = &mut *physics;
     for entity in removed.0.drain(..) {
@@ -128,7 +130,7 @@ pub(crate) fn prepare(
             .entity(entity)
             .insert(RejectedSphere { error, desc });
     };
-    // New spheres in entity order, so ids never depend on query order.
+    // New spheres by `SphereOrder`, then entity: ids never depend on query order.
     let mut new = Vec::new();
     for item in &spheres {
         let entity = item.0;
@@ -164,7 +166,7 @@ pub(crate) fn prepare(
             None => new.push(entity),
         }
     }
-    new.sort_unstable();
+    new.sort_unstable_by_key(|&e| (orders.get(e).map_or(u64::MAX, |o| o.0), e));
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
         let desc = describe(&item, &options);

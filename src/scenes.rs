@@ -290,19 +290,19 @@ pub fn spawn_spheres(commands: &mut Commands, spheres: &[SphereSpec]) {
     }
 }
 
+/// Top-level entities that belong to no scene and are not persistent.
+type Unscoped = (
+    Without<ChildOf>,
+    Without<LabPersistent>,
+    Without<DespawnOnExit<ActiveScene>>,
+);
+
 /// Ties a new top-level entity with a `Transform` or a UI `Node` to the scene being shown (an
 /// observer: it sees entities the scene spawns on entering and at any time after).
 pub(crate) fn scope_new_entity<C: Component>(
     added: On<Add, C>,
     state: Option<Res<State<ActiveScene>>>,
-    entities: Query<
-        (),
-        (
-            Without<ChildOf>,
-            Without<LabPersistent>,
-            Without<DespawnOnExit<ActiveScene>>,
-        ),
-    >,
+    entities: Query<(), Unscoped>,
     mut commands: Commands,
 ) {
     let Some(state) = state else {

@@ -6,10 +6,9 @@ use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseSc
 use bevy::prelude::*;
 use bevy::state::state::StateTransitionEvent;
 use bevy_egui::EguiContexts;
-use bevy_sphere_physics::prelude::*;
 
 use crate::controls::LabUi;
-use crate::render::scene_bounds;
+use crate::render::{SphereExtent, scene_bounds_of};
 use crate::scenes::{ActiveScene, LabPersistent};
 
 /// Where the camera looks from: `distance` from `target`, turned `yaw` radians about the
@@ -68,18 +67,8 @@ fn spawn_camera(mut commands: Commands) {
 }
 
 /// Frames the spheres (and anchors) of a scene just entered.
-fn frame_scene(
-    spheres: Query<(&Transform, &SphereBody, Has<FixedSphere>, Option<&Tethered>)>,
-    mut cameras: Query<(&mut OrbitCamera, &Projection)>,
-) {
-    let Some((low, high)) = scene_bounds(spheres.iter().map(|(t, b, fixed, tether)| {
-        (
-            t.translation,
-            b.radius as f32,
-            fixed,
-            tether.map(|t| t.anchor.as_vec3()),
-        )
-    })) else {
+fn frame_scene(spheres: Query<SphereExtent>, mut cameras: Query<(&mut OrbitCamera, &Projection)>) {
+    let Some((low, high)) = scene_bounds_of(&spheres) else {
         return;
     };
     for (mut orbit, projection) in &mut cameras {

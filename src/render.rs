@@ -246,6 +246,26 @@ pub fn scene_bounds<'a>(
     low.is_finite().then_some((low, high))
 }
 
+/// What [`scene_bounds_of`] reads of a sphere.
+pub type SphereExtent = (
+    &'static Transform,
+    &'static SphereBody,
+    Has<FixedSphere>,
+    Option<&'static Tethered>,
+);
+
+/// [`scene_bounds`] of the spheres in a query.
+pub fn scene_bounds_of(spheres: &Query<SphereExtent>) -> Option<(Vec3, Vec3)> {
+    scene_bounds(spheres.iter().map(|(t, b, fixed, tether)| {
+        (
+            t.translation,
+            b.radius as f32,
+            fixed,
+            tether.map(|t| t.anchor.as_vec3()),
+        )
+    }))
+}
+
 /// A rod between two points.
 fn rod(assets: &LabAssets, from: Vec3, to: Vec3, width: f32) -> impl Bundle {
     let along = to - from;
@@ -266,20 +286,13 @@ fn build_stage(
     mut commands: Commands,
     assets: Res<LabAssets>,
     state: Res<State<ActiveScene>>,
-    spheres: Query<(&Transform, &SphereBody, Has<FixedSphere>, Option<&Tethered>)>,
+    spheres: Query<SphereExtent>,
 ) {
     if *state.get() == ActiveScene::None {
         return;
     }
     let scope = DespawnOnExit(state.get().clone());
-    let Some((low, high)) = scene_bounds(spheres.iter().map(|(t, b, fixed, tether)| {
-        (
-            t.translation,
-            b.radius as f32,
-            fixed,
-            tether.map(|t| t.anchor.as_vec3()),
-        )
-    })) else {
+    let Some((low, high)) = scene_bounds_of(&spheres) else {
         return;
     };
     let mut anchors = Vec::new();

@@ -34,7 +34,8 @@ struct Segment {
     inverse_mass: f64,
     radius: f64,
     restitution: f64,
-    version: u32,
+    /// The body's id (records name bodies without reading the body array).
+    id: crate::BodyId,
 }
 
 impl Segment {
@@ -93,6 +94,11 @@ impl Ord for Event {
 #[derive(Debug, Default)]
 pub(crate) struct Solver {
     segments: Vec<Segment>,
+    /// Each segment's version (bumped when its drift changes; older events are stale). Apart
+    /// from the segments so the event loop's checks read a small, dense array.
+    versions: Vec<u32>,
+    /// Each segment's position at the end of the step, in solver order.
+    finals: Vec<DVec3>,
     boxes: Vec<Aabb>,
     queue: BinaryHeap<Reverse<Event>>,
     broad: BroadPhase,
@@ -227,7 +233,7 @@ impl Solver {
                 inverse_mass: body.inverse_mass(),
                 radius: body.radius(),
                 restitution: body.restitution(),
-                version: 0,
+                id: body.id(),
             };
             self.boxes.push(swept_box(&segment, dt, settings));
             self.segments.push(segment);
@@ -263,6 +269,8 @@ impl Solver {
             }
             None => self.order.extend(0..self.segments.len() as u32),
         }
+        self.versions.clear();
+        self.versions.resize(self.segments.len(), 0);
         // Touching pairs that approach no faster than the resting speed are resting contacts,
         // solved together below; every other pair gets its time of impact.
         self.resting.clear();
@@ -273,7 +281,7 @@ impl Solver {
         });
         (self.broad, self.boxes) = (broad, boxes);
         if !self.resting.is_empty() {
-            self.solve_resting(bodies, ctx, stats);
+            self.solve_resting(ctx, stats);
             self.requery_touched(0.0, ctx, stats);
         }
 
@@ -314,8 +322,8 @@ impl Solver {
                 }
                 events += component.len() as u32;
                 match component {
-                    [single] => self.resolve_event(single, bodies, ctx, stats),
-                    _ => self.resolve_group(component, event.time, bodies, ctx, stats),
+                    [single] => self.resolve_event(single, ctx, stats),
+                    _ => self.resolve_group(component, event.time, ctx, stats),
                 }
                 for e in component.iter() {
                     self.touch(e.a);
@@ -327,6 +335,7 @@ impl Solver {
             self.requery_touched(event.time, ctx, stats);
         }
 
+        self.finals.clear();
         for (&i, segment) in self.order.iter().zip(&self.segments) {
             let body = &mut bodies[i as usize];
             let mut position = segment.position_at(dt);
@@ -336,15 +345,18 @@ impl Solver {
             }
             body.desc.position = position;
             body.desc.velocity = velocity;
+            self.finals.push(position);
         }
         // Two bodies overlapping now had overlapping boxes when either last changed, so they
-        // were tested then: the tested pairs are enough to find the largest overlap.
+        // were tested then: the tested pairs are enough to find the largest overlap. Read in
+        // solver order, where neighbours in space are neighbours in memory.
         stats.max_overlap = self
             .tested
             .iter()
             .map(|&(i, j)| {
-                let (a, b) = (self.order[i as usize], self.order[j as usize]);
-                overlap(&bodies[a as usize], &bodies[b as usize])
+                let (i, j) = (i as usize, j as usize);
+                let reach = self.segments[i].radius + self.segments[j].radius;
+                reach - (self.finals[j] - self.finals[i]).length()
             })
             .fold(0.0, f64::max);
     }
@@ -434,7 +446,7 @@ impl Solver {
 
     /// Solves all resting contacts at once (projected Gauss–Seidel, restitution 0), then marks
     /// the bodies it changed as touched.
-    fn solve_resting(&mut self, bodies: &[Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
+    fn solve_resting(&mut self, ctx: &StepContext<'_>, stats: &mut StepStats) {
         let threshold = 1e-9
             * self
                 .resting
@@ -472,8 +484,8 @@ impl Solver {
             stats.collisions += 1;
             stats.resting_contacts += 1;
             self.collisions.push(collision(
-                bodies[self.order[a] as usize].id(),
-                bodies[self.order[b] as usize].id(),
+                self.segments[a].id,
+                self.segments[b].id,
                 ctx.start_time,
                 c.normal,
                 sa.position + c.normal * sa.radius,
@@ -490,7 +502,7 @@ impl Solver {
                 (segment.velocity, segment.taut, segment.sag) =
                     chord(segment.position, segment.velocity, tether, ctx.dt);
             }
-            segment.version += 1;
+            self.versions[k] += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
         }
     }
@@ -529,7 +541,7 @@ impl Solver {
             (segment.velocity, segment.taut, segment.sag) =
                 chord(segment.position, velocity, tether, ctx.dt - t);
         }
-        segment.version += 1;
+        self.versions[k] += 1;
         self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
     }
 
@@ -547,8 +559,8 @@ impl Solver {
     }
 
     fn is_current(&self, event: &Event) -> bool {
-        self.segments[event.a as usize].version == event.version_a
-            && self.segments[event.b as usize].version == event.version_b
+        self.versions[event.a as usize] == event.version_a
+            && self.versions[event.b as usize] == event.version_b
     }
 
     /// Resolves contacts that happen at one instant together (see [`resolve_simultaneous`]).
@@ -556,7 +568,6 @@ impl Solver {
         &mut self,
         events: &[Event],
         t: f64,
-        bodies: &[Body],
         ctx: &StepContext<'_>,
         stats: &mut StepStats,
     ) {
@@ -663,8 +674,8 @@ impl Solver {
             stats.resting_contacts += u32::from(resting);
             let sa = &self.segments[a];
             self.collisions.push(collision(
-                bodies[self.order[a] as usize].id(),
-                bodies[self.order[b] as usize].id(),
+                self.segments[a].id,
+                self.segments[b].id,
                 ctx.start_time + t,
                 c.normal,
                 sa.position + c.normal * sa.radius,
@@ -717,24 +728,18 @@ impl Solver {
                 time: (t + toi).min(ctx.dt),
                 a: i as u32,
                 b: j as u32,
-                version_a: si.version,
-                version_b: sj.version,
+                version_a: self.versions[i],
+                version_b: self.versions[j],
             }));
         }
     }
 
-    fn resolve_event(
-        &mut self,
-        event: &Event,
-        bodies: &[Body],
-        ctx: &StepContext<'_>,
-        stats: &mut StepStats,
-    ) {
+    fn resolve_event(&mut self, event: &Event, ctx: &StepContext<'_>, stats: &mut StepStats) {
         let (a, b) = (event.a as usize, event.b as usize);
         let t = event.time;
         if self.taut_at(a, t) || self.taut_at(b, t) {
             // A taut string takes part in the impact: solve it with the contact.
-            self.resolve_group(std::slice::from_ref(event), t, bodies, ctx, stats);
+            self.resolve_group(std::slice::from_ref(event), t, ctx, stats);
             return;
         }
         for k in [a, b] {
@@ -766,8 +771,8 @@ impl Solver {
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);
         self.collisions.push(collision(
-            bodies[self.order[a] as usize].id(),
-            bodies[self.order[b] as usize].id(),
+            sa.id,
+            sb.id,
             ctx.start_time + t,
             normal,
             sa.position + normal * sa.radius,

@@ -469,3 +469,33 @@ fn reset_restarts_time_and_settings_and_keeps_live_spheres() {
     assert!((body.position() - (at + falling * 4.0 / 64.0)).length() < 1e-12);
     assert_eq!(physics.world.time(), 4.0 / 64.0);
 }
+
+#[test]
+fn sphere_order_decides_body_ids_whatever_the_entities() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    // Spawned in one order, asked to join in the reverse one.
+    let entities: Vec<Entity> = (0..4)
+        .map(|i| {
+            app.world_mut()
+                .spawn((
+                    SphereBody::new(0.1),
+                    Transform::from_xyz(i as f32, 0.0, 0.0),
+                    SphereOrder(10 - i),
+                ))
+                .id()
+        })
+        .collect();
+    // One without an order joins after them.
+    let last = app
+        .world_mut()
+        .spawn((SphereBody::new(0.1), Transform::from_xyz(9.0, 0.0, 0.0)))
+        .id();
+    run_steps(&mut app, 1);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    let ids: Vec<usize> = entities
+        .iter()
+        .chain([&last])
+        .map(|e| physics.body(*e).unwrap().index())
+        .collect();
+    assert_eq!(ids, vec![3, 2, 1, 0, 4]);
+}

@@ -41,6 +41,7 @@ mod broad_phase;
 pub mod contact;
 pub mod generate;
 pub mod integrator;
+mod queue;
 pub mod response;
 pub mod scene;
 mod solver;

@@ -7,12 +7,12 @@
 //! step. Touching chains therefore propagate one contact at a time, exactly as a sequence of
 //! collisions separated by vanishing gaps would: one ball in, one ball out.
 
-use std::cmp::{Ordering, Reverse};
-use std::collections::BinaryHeap;
+use std::cmp::Ordering;
 
 use glam::DVec3;
 
 use crate::broad_phase::{Aabb, BroadPhase};
+use crate::queue::{EventQueue, Timed};
 use crate::response::{GroupContact, resolve, resolve_simultaneous};
 use crate::{Body, Collision, Integrator, Settings, StepStats, Tether, TimeOfImpact};
 
@@ -68,6 +68,12 @@ impl Event {
     }
 }
 
+impl Timed for Event {
+    fn time(&self) -> f64 {
+        self.time
+    }
+}
+
 impl PartialEq for Event {
     fn eq(&self, other: &Self) -> bool {
         self.cmp(other) == Ordering::Equal
@@ -100,7 +106,7 @@ pub(crate) struct Solver {
     /// Each segment's position at the end of the step, in solver order.
     finals: Vec<DVec3>,
     boxes: Vec<Aabb>,
-    queue: BinaryHeap<Reverse<Event>>,
+    queue: EventQueue<Event>,
     broad: BroadPhase,
     candidates: Vec<u32>,
     /// A collision approaching no faster than this times the acceleration pressing the pair
@@ -198,7 +204,7 @@ impl Solver {
         let dt = ctx.dt;
         let settings = ctx.settings;
         self.tested.clear();
-        self.queue.clear();
+        self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
         self.boxes.clear();
         let mut dynamic = 0u32;
@@ -291,7 +297,7 @@ impl Solver {
         let mut events = 0u32;
         // Events closer in time than this are one simultaneous group.
         let simultaneity = settings.tolerance.epsilon() * dt;
-        while let Some(Reverse(event)) = self.queue.pop() {
+        while let Some(event) = self.queue.pop() {
             if !self.is_current(&event) {
                 continue;
             }
@@ -301,7 +307,7 @@ impl Solver {
             }
             self.group.clear();
             self.group.push(event);
-            while let Some(Reverse(next)) = self.queue.peek().copied() {
+            while let Some(next) = self.queue.peek() {
                 if next.time > event.time + simultaneity {
                     break;
                 }
@@ -724,13 +730,13 @@ impl Solver {
         stats.toi_tests += 1;
         stats.toi_iterations += u64::from(outcome.iterations);
         if let Some(toi) = outcome.time {
-            self.queue.push(Reverse(Event {
+            self.queue.push(Event {
                 time: (t + toi).min(ctx.dt),
                 a: i as u32,
                 b: j as u32,
                 version_a: self.versions[i],
                 version_b: self.versions[j],
-            }));
+            });
         }
     }
 

@@ -701,8 +701,13 @@ impl Solver {
         stats: &mut StepStats,
     ) {
         let (si, sj) = (&self.segments[i], &self.segments[j]);
-        if si.is_fixed() && sj.is_fixed() {
-            return;
+        match (si.is_fixed(), sj.is_fixed()) {
+            (true, true) => return,
+            // A fixed sphere (a wall, a dome) reaches only part of its box: skip bodies whose
+            // boxes its ball misses.
+            (true, false) if !ball_meets_box(si, sj, ctx) => return,
+            (false, true) if !ball_meets_box(sj, si, ctx) => return,
+            _ => {}
         }
         self.tested.push((i as u32, j as u32));
         let d = sj.position_at(t) - si.position_at(t);
@@ -903,6 +908,17 @@ fn collision(
 /// How far two bodies overlap (negative when apart).
 fn overlap(a: &Body, b: &Body) -> f64 {
     a.radius() + b.radius() - (b.position() - a.position()).length()
+}
+
+/// Whether fixed sphere `fixed`, grown by the contact margin, meets the box `other` sweeps
+/// over the rest of the step (a wall or a dome reaches only a small part of its own box).
+fn ball_meets_box(fixed: &Segment, other: &Segment, ctx: &StepContext<'_>) -> bool {
+    let b = swept_box(other, ctx.dt, ctx.settings);
+    let margin = ctx.settings.tolerance.epsilon() * (1.0 + 2.0 * fixed.radius);
+    // A hair larger, so rounding never drops a touching pair.
+    let radius = (fixed.radius + margin) * (1.0 + 1e-12);
+    let closest = fixed.position.clamp(b.lo, b.hi);
+    (closest - fixed.position).length_squared() <= radius * radius
 }
 
 /// The box a segment sweeps over the rest of the step, grown by the contact tolerance.

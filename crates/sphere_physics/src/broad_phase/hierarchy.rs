@@ -1,56 +1,27 @@
-//! Broad phase: which bodies' boxes may overlap, in O(1) per body.
+//! The broad phase's general tier: a hierarchical grid for bodies of any size.
 //!
-//! A hierarchical grid. Level `L` has cells of side `base · 2^L`; each body lives at the lowest
-//! level whose cells are at least as large as its box, in the one cell that holds its box's lower
-//! corner. A body whose box overlaps a query box therefore has its lower corner in
-//! `[query.lo − cell, query.hi]` at its level: at most 3 cells per axis to visit. The base cell
-//! is the size of a typical box, so a shower of small spheres sits on level 0 and a huge fixed
-//! sphere (a dome, a wall) sits alone on a high level, where small bodies find it in a few cells.
+//! Level `L` has cells of side `base · 2^L`; each body lives at the lowest level whose cells are
+//! at least as large as its box, in the one cell that holds its box's lower corner. A body whose
+//! box overlaps a query box therefore has its lower corner in `[query.lo − cell, query.hi]` at
+//! its level: at most 3 cells per axis to visit. A huge fixed sphere (a dome, a wall) sits alone
+//! on a high level, where small bodies find it through the level's short member list.
 //!
-//! At the start of a step the bodies are counting-sorted by cell into flat arrays. Level-0
-//! cells map to buckets by their coordinates modulo a power of two, so neighbouring cells are
-//! neighbours in memory and a sweep over the bodies in sorted order reads memory almost in order.
-//! Each pair of neighbouring cells is visited once (a cell and its 13 "forward" neighbours).
-//! A body whose box leaves its cell during the step (after a collision) moves to a small
-//! overlay grid of linked lists, where moving again is O(1). Nothing allocates once the
-//! buffers have grown to the scene. Scenes of a few bodies skip the grid: all pairs are cheaper.
+//! At the start of a step the bodies it holds are counting-sorted by cell into flat arrays
+//! (cells map to buckets by a hash). A body that joins during the step, or whose box leaves its
+//! cell, moves to an overlay of linked lists, where moving again is O(1). Nothing allocates once
+//! the buffers have grown to the scene.
 
 use glam::DVec3;
 
-/// Axis-aligned box.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Aabb {
-    pub lo: DVec3,
-    pub hi: DVec3,
-}
-
-impl Aabb {
-    /// The box around a sphere of `radius` swept from `from` to `to`, grown by `margin`.
-    pub fn swept(from: DVec3, to: DVec3, radius: f64, margin: f64) -> Self {
-        let r = DVec3::splat(radius + margin);
-        Aabb {
-            lo: from.min(to) - r,
-            hi: from.max(to) + r,
-        }
-    }
-
-    #[inline]
-    pub fn overlaps(&self, other: &Aabb) -> bool {
-        self.lo.cmple(other.hi).all() && other.lo.cmple(self.hi).all()
-    }
-
-    fn extent(&self) -> f64 {
-        (self.hi - self.lo).max_element()
-    }
-}
+use super::Aabb;
 
 const NONE: u32 = u32::MAX;
 
 /// A level no body is on: marks sorted entries of bodies that moved to the overlay.
 const GONE: u32 = u32::MAX;
 
-/// Below this many bodies, all pairs are tested directly.
-const SMALL_SCENE: usize = 24;
+/// The level of a body the hierarchy does not hold.
+const ABSENT: u32 = u32::MAX - 1;
 
 /// Levels: cells from `base` to `base · 2^40`.
 const LEVELS: usize = 41;
@@ -93,9 +64,7 @@ fn floor_i32(v: f64) -> i32 {
 
 /// The hierarchical grid (see the module docs). Keeps its buffers between steps.
 #[derive(Debug, Default)]
-pub(crate) struct BroadPhase {
-    /// All pairs directly (small scenes).
-    brute: bool,
+pub(crate) struct Hierarchy {
     cells: Vec<f64>,
     inverse_cells: Vec<f64>,
     /// Level-0 buckets are `2^bits` per axis.
@@ -114,35 +83,39 @@ pub(crate) struct BroadPhase {
     sorted_keys: Vec<CellKey>,
     sorted_boxes: Vec<Aabb>,
     sorted_position: Vec<u32>,
-    permutation: Vec<u32>,
     /// The overlay: bodies that left their sorted cell, in bucket lists.
     in_overlay: Vec<bool>,
     overlay_heads: Vec<u32>,
     next: Vec<u32>,
     prev: Vec<u32>,
     overlay_level_counts: Vec<u32>,
-    /// Bodies on each level above 0, while there are few of them (big spheres: a dome,
-    /// walls): testing them directly beats visiting cells. May hold bodies that have since
-    /// left the level; each body at most once.
+    /// The highest level any body has been on this step.
+    highest: usize,
+    /// Bodies on each level, while there are few of them (big spheres: a dome, walls):
+    /// testing them directly beats visiting cells. May hold bodies that have since left the
+    /// level; each body at most once.
     members: Vec<Vec<u32>>,
-    scratch: Vec<f64>,
 }
 
 /// Levels with at most this many bodies are scanned through their member lists.
 const FEW: usize = 16;
 
-impl BroadPhase {
-    /// Rebuilds the grid for `boxes`.
-    pub fn rebuild(&mut self, boxes: &[Aabb]) {
+impl Hierarchy {
+    /// Rebuilds the grid with level-0 cells of side `base`, holding the bodies `held..` of
+    /// `boxes`; bodies `..held` may join later through [`Hierarchy::update`].
+    pub fn rebuild(&mut self, boxes: &[Aabb], held: usize, base: f64) {
         let n = boxes.len();
-        self.brute = n <= SMALL_SCENE;
-        if self.brute {
-            return;
+        self.cells.clear();
+        self.inverse_cells.clear();
+        for level in 0..LEVELS {
+            let cell = base * 2f64.powi(level as i32);
+            self.cells.push(cell);
+            self.inverse_cells.push(1.0 / cell);
         }
-        self.choose_cells(boxes);
-        // Buckets: a power of two per axis, at least 2n in all.
+        // Buckets: a power of two per axis, at least twice the bodies held and an eighth of
+        // those that may join.
         self.bits = 1;
-        while (1usize << (3 * self.bits)) < 2 * n {
+        while (1usize << (3 * self.bits)) < (2 * (n - held)).max(n / 8) {
             self.bits += 1;
         }
         let buckets = 1usize << (3 * self.bits);
@@ -159,9 +132,16 @@ impl BroadPhase {
         self.start.resize(buckets + 1, 0);
         self.members.resize_with(LEVELS, Vec::new);
         self.members.iter_mut().for_each(Vec::clear);
-        for (i, b) in boxes.iter().enumerate() {
+        self.highest = 0;
+        let absent = CellKey {
+            level: ABSENT,
+            ..Default::default()
+        };
+        self.keys.resize(held, absent);
+        for (i, b) in boxes.iter().enumerate().skip(held) {
             let key = self.key_of(b);
-            if key.level > 0 && self.members[key.level as usize].len() <= FEW {
+            self.highest = self.highest.max(key.level as usize);
+            if self.members[key.level as usize].len() <= FEW {
                 self.members[key.level as usize].push(i as u32);
             }
             self.level_counts[key.level as usize] += 1;
@@ -174,16 +154,17 @@ impl BroadPhase {
         for b in 0..buckets {
             self.start[b + 1] += self.start[b];
         }
+        let m = n - held;
         self.order.clear();
-        self.order.resize(n, 0);
+        self.order.resize(m, 0);
         self.sorted_keys.clear();
-        self.sorted_keys.resize(n, CellKey::default());
+        self.sorted_keys.resize(m, CellKey::default());
         self.sorted_boxes.clear();
-        self.sorted_boxes.resize(n, Aabb::default());
+        self.sorted_boxes.resize(m, Aabb::default());
         self.sorted_position.clear();
         self.sorted_position.resize(n, 0);
         // Place bodies; `start[b]` ends as the end of bucket b - 1's range, so shift back after.
-        for (i, key) in self.keys.iter().enumerate() {
+        for (i, key) in self.keys.iter().enumerate().skip(held) {
             let b = self.bucket(key);
             let p = self.start[b] as usize;
             self.start[b] += 1;
@@ -205,36 +186,6 @@ impl BroadPhase {
         self.next.resize(n, NONE);
         self.prev.clear();
         self.prev.resize(n, NONE);
-    }
-
-    /// The base cell: the largest typical box (up to twice the median size).
-    fn choose_cells(&mut self, boxes: &[Aabb]) {
-        self.scratch.clear();
-        self.scratch
-            .extend(boxes.iter().map(Aabb::extent).filter(|e| e.is_finite()));
-        let middle = self.scratch.len() / 2;
-        let median = if self.scratch.is_empty() {
-            1.0
-        } else {
-            *self
-                .scratch
-                .select_nth_unstable_by(middle, f64::total_cmp)
-                .1
-        };
-        let typical = self
-            .scratch
-            .iter()
-            .copied()
-            .filter(|&e| e <= 2.0 * median)
-            .fold(0.0f64, f64::max);
-        let base = if typical > 0.0 { typical } else { 1.0 };
-        self.cells.clear();
-        self.inverse_cells.clear();
-        for level in 0..LEVELS {
-            let cell = base * 2f64.powi(level as i32);
-            self.cells.push(cell);
-            self.inverse_cells.push(1.0 / cell);
-        }
     }
 
     #[inline]
@@ -281,38 +232,20 @@ impl BroadPhase {
         self.key_at(self.level_for(b), b.lo)
     }
 
-    /// Renumbers the bodies by their sorted position, so that bodies near in space are near in
-    /// memory, and returns the permutation: new index `p` is old index `permutation[p]`. The
-    /// caller must reorder its boxes (and everything else indexed by body) the same way.
-    /// `None` for small scenes, which keep their order.
-    pub fn renumber_sorted(&mut self) -> Option<&[u32]> {
-        if self.brute {
-            return None;
-        }
-        std::mem::swap(&mut self.order, &mut self.permutation);
-        self.order.clear();
-        self.order.extend(0..self.permutation.len() as u32);
-        self.keys.clear();
-        self.keys.extend_from_slice(&self.sorted_keys);
-        for members in &mut self.members {
-            for m in members.iter_mut() {
-                *m = self.sorted_position[*m as usize];
-            }
-        }
-        for (p, position) in self.sorted_position.iter_mut().enumerate() {
-            *position = p as u32;
-        }
-        Some(&self.permutation)
-    }
-
-    /// Body `i`'s box is now `b`.
+    /// Body `i`'s box is now `b` (joining the hierarchy if it was not in it).
     pub fn update(&mut self, i: usize, b: &Aabb) {
-        if self.brute {
-            return;
-        }
         let key = self.key_of(b);
         let extent = &mut self.level_extents[key.level as usize];
         *extent = extent.max(b.extent());
+        self.highest = self.highest.max(key.level as usize);
+        if self.keys[i].level == ABSENT {
+            self.in_overlay[i] = true;
+            self.keys[i] = key;
+            self.level_counts[key.level as usize] += 1;
+            self.add_member(i, key.level);
+            self.overlay_insert(i as u32);
+            return;
+        }
         if !self.in_overlay[i] {
             let p = self.sorted_position[i] as usize;
             if key == self.keys[i] {
@@ -331,11 +264,15 @@ impl BroadPhase {
         self.level_counts[self.keys[i].level as usize] -= 1;
         self.keys[i] = key;
         self.level_counts[key.level as usize] += 1;
-        let members = &mut self.members[key.level as usize];
-        if key.level > 0 && members.len() <= FEW && !members.contains(&(i as u32)) {
+        self.add_member(i, key.level);
+        self.overlay_insert(i as u32);
+    }
+
+    fn add_member(&mut self, i: usize, level: u32) {
+        let members = &mut self.members[level as usize];
+        if members.len() <= FEW && !members.contains(&(i as u32)) {
             members.push(i as u32);
         }
-        self.overlay_insert(i as u32);
     }
 
     fn overlay_insert(&mut self, i: u32) {
@@ -460,7 +397,7 @@ impl BroadPhase {
                 continue;
             }
             let members = &self.members[level];
-            if level > 0 && members.len() <= FEW && count as usize <= members.len() {
+            if members.len() <= FEW && count as usize <= members.len() {
                 // Every body on this level is in the list: test them directly.
                 for &j in members {
                     if self.keys[j as usize].level as usize == level {
@@ -507,20 +444,10 @@ impl BroadPhase {
     /// Calls `f(i, j)` with `i < j` for every pair of overlapping boxes, each pair once.
     /// Call right after [`BroadPhase::rebuild`] with the same boxes.
     pub fn pairs(&self, boxes: &[Aabb], mut f: impl FnMut(usize, usize)) {
-        if self.brute {
-            for i in 0..boxes.len() {
-                for j in i + 1..boxes.len() {
-                    if boxes[i].overlaps(&boxes[j]) {
-                        f(i, j);
-                    }
-                }
-            }
-            return;
-        }
         // In sorted order, so memory is read nearly in order. A pair on one level is reported
         // from the forward side of its pair of cells (in one cell: from the earlier entry); a
         // pair across levels by the body on the lower level.
-        let highest = self.level_counts.iter().rposition(|&c| c > 0).unwrap_or(0);
+        let highest = self.highest;
         for (p, (key, bp)) in self.sorted_keys.iter().zip(&self.sorted_boxes).enumerate() {
             let i = self.order[p] as usize;
             if key.level == 0 {
@@ -587,19 +514,10 @@ impl BroadPhase {
         }
     }
 
-    /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s (`boxes` current).
-    pub fn overlapping(&self, i: usize, boxes: &[Aabb], mut f: impl FnMut(usize)) {
-        let bi = &boxes[i];
-        if self.brute {
-            for (j, bj) in boxes.iter().enumerate() {
-                if j != i && bi.overlaps(bj) {
-                    f(j);
-                }
-            }
-            return;
-        }
-        self.visit(bi, 0..LEVELS, &mut |j| {
-            if j != i && bi.overlaps(&boxes[j]) {
+    /// Calls `f(j)` for every body `j != i` it holds whose box overlaps `q` (`boxes` current).
+    pub fn overlapping(&self, i: usize, q: &Aabb, boxes: &[Aabb], mut f: impl FnMut(usize)) {
+        self.visit(q, 0..self.highest + 1, &mut |j| {
+            if j != i && q.overlaps(&boxes[j]) {
                 f(j);
             }
         });

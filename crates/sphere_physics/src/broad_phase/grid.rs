@@ -1,0 +1,228 @@
+//! The broad phase's fast tier: bodies of about one size in a dense grid of cells as large as
+//! the largest of them, sorted by cell, so that a row of three cells is one range of bodies.
+//!
+//! A body belongs to the cell holding its box's centre at the start of the step, and its box
+//! lies within that cell's *envelope*: the cell grown by just under half a cell on each side.
+//! Boxes within the envelopes of two cells two apart along an axis cannot overlap, so a body's
+//! partners are in the 27 cells around it. After a collision a body stays where it is while its
+//! new box is still within the envelope (most do: the new box is the rest of the old drift,
+//! turned); otherwise it leaves the grid for the broad phase's general tier.
+
+use super::Aabb;
+
+/// A cell's coordinates, absolute (cell `k` spans `[k·cell, (k+1)·cell)` on its axis).
+pub(crate) type Cell = [i32; 3];
+
+/// The dense grid (see the module docs). Keeps its buffers between steps.
+#[derive(Debug, Default)]
+pub(crate) struct Grid {
+    cell: f64,
+    inverse: f64,
+    /// How far a box may reach beyond its cell on each side: just under half a cell.
+    slack: f64,
+    /// The lowest cell of the dense block, and its size in cells per axis.
+    origin: Cell,
+    dims: [usize; 3],
+    /// Bodies `0..len` are the grid's, sorted by cell: cell `c` (dense index) holds bodies
+    /// `start[c]..start[c + 1]`.
+    len: usize,
+    start: Vec<u32>,
+    /// Each grid body's cell.
+    cells: Vec<Cell>,
+    /// Whether grid body `i` is still in the grid (it leaves when its box leaves its envelope).
+    present: Vec<bool>,
+}
+
+/// `floor(v)` as an integer, saturating far outside any scene.
+#[inline]
+fn floor_i32(v: f64) -> i32 {
+    v.clamp(-1.0e9, 1.0e9).floor() as i32
+}
+
+impl Grid {
+    /// Sets the cell size: boxes up to `largest` across fit their cell's envelope.
+    pub fn set_cell(&mut self, largest: f64) {
+        self.cell = largest * (1.0 + 1e-5);
+        self.inverse = 1.0 / self.cell;
+        self.slack = 0.5 * self.cell * (1.0 - 1e-6);
+    }
+
+    /// The cell whose envelope holds `b`, if the box is no larger than the cell allows.
+    #[inline]
+    pub fn cell_of(&self, b: &Aabb) -> Option<Cell> {
+        let centre = (b.lo + b.hi) * 0.5;
+        let k = [
+            floor_i32(centre.x * self.inverse),
+            floor_i32(centre.y * self.inverse),
+            floor_i32(centre.z * self.inverse),
+        ];
+        self.within(b, k).then_some(k)
+    }
+
+    /// Whether `b` lies within the envelope of cell `k`.
+    #[inline]
+    fn within(&self, b: &Aabb, k: Cell) -> bool {
+        (0..3).all(|a| {
+            let lo = f64::from(k[a]) * self.cell - self.slack;
+            let hi = f64::from(k[a] + 1) * self.cell + self.slack;
+            b.lo[a] >= lo && b.hi[a] <= hi
+        })
+    }
+
+    /// Lays the grid out over the block `origin`, `dims` for bodies `0..cells.len()`, already
+    /// sorted by the dense index of their cells (`cells` are theirs, in that order).
+    pub fn layout(&mut self, origin: Cell, dims: [usize; 3], cells: &[Cell]) {
+        self.origin = origin;
+        self.dims = dims;
+        self.len = cells.len();
+        self.cells.clear();
+        self.cells.extend_from_slice(cells);
+        self.present.clear();
+        self.present.resize(cells.len(), true);
+        let total = dims[0] * dims[1] * dims[2];
+        self.start.clear();
+        self.start.resize(total + 1, 0);
+        for k in cells {
+            let c = self.index(*k);
+            self.start[c + 1] += 1;
+        }
+        for c in 0..total {
+            self.start[c + 1] += self.start[c];
+        }
+    }
+
+    /// The dense index of cell `k` (inside the block).
+    #[inline]
+    pub fn index(&self, k: Cell) -> usize {
+        let x = (k[0] - self.origin[0]) as usize;
+        let y = (k[1] - self.origin[1]) as usize;
+        let z = (k[2] - self.origin[2]) as usize;
+        x + self.dims[0] * (y + self.dims[1] * z)
+    }
+
+    /// Bodies `0..len()` are (or were, at the start of the step) the grid's.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether body `i` is in the grid.
+    #[inline]
+    pub fn holds(&self, i: usize) -> bool {
+        i < self.len && self.present[i]
+    }
+
+    /// Body `i`'s box is now `b`: it stays if the box is within its cell's envelope, and
+    /// otherwise leaves the grid (returns false).
+    pub fn keep(&mut self, i: usize, b: &Aabb) -> bool {
+        if self.within(b, self.cells[i]) {
+            return true;
+        }
+        self.present[i] = false;
+        false
+    }
+
+    /// Calls `f(i, j)` with `i < j` for every pair of grid bodies whose boxes overlap, each
+    /// pair once: a cell with itself and its 13 neighbours that follow it. Call right after
+    /// [`Grid::layout`].
+    pub fn pairs(&self, boxes: &[Aabb], f: &mut impl FnMut(usize, usize)) {
+        let [nx, ny, nz] = self.dims;
+        let start = &self.start;
+        let mut c = 0;
+        for z in 0..nz {
+            for y in 0..ny {
+                for x in 0..nx {
+                    let (s, e) = (start[c] as usize, start[c + 1] as usize);
+                    if s == e {
+                        c += 1;
+                        continue;
+                    }
+                    // Own cell and the next along x: one range. Then four rows of three.
+                    let own_end = start[c + 1 + usize::from(x + 1 < nx)] as usize;
+                    let xl = x.saturating_sub(1);
+                    let xh = (x + 1).min(nx - 1);
+                    let mut rows = [(0usize, 0usize); 4];
+                    for (r, (dy, dz)) in [(1isize, 0usize), (-1, 1), (0, 1), (1, 1)]
+                        .into_iter()
+                        .enumerate()
+                    {
+                        let yy = y as isize + dy;
+                        let zz = z + dz;
+                        if yy < 0 || yy as usize >= ny || zz >= nz {
+                            continue;
+                        }
+                        let row = xl + nx * (yy as usize + ny * zz);
+                        rows[r] = (start[row] as usize, start[row + (xh - xl) + 1] as usize);
+                    }
+                    for i in s..e {
+                        let bi = &boxes[i];
+                        for j in i + 1..own_end {
+                            if bi.overlaps(&boxes[j]) {
+                                f(i, j);
+                            }
+                        }
+                        for &(rs, re) in &rows {
+                            for j in rs..re {
+                                if bi.overlaps(&boxes[j]) {
+                                    f(i, j);
+                                }
+                            }
+                        }
+                    }
+                    c += 1;
+                }
+            }
+        }
+    }
+
+    /// Calls `f(j)` for every body `j` in the grid whose box overlaps `q`.
+    pub fn visit(&self, q: &Aabb, boxes: &[Aabb], f: &mut impl FnMut(usize)) {
+        if self.len == 0 {
+            return;
+        }
+        // Cell k's envelope [k·cell − slack, (k+1)·cell + slack] overlaps [lo, hi] when
+        // (lo − slack)/cell − 1 <= k <= (hi + slack)/cell; padded against rounding.
+        let mut range = [(0usize, 0usize); 3];
+        let mut cells = 1usize;
+        for (a, r) in range.iter_mut().enumerate() {
+            let lo = ((q.lo[a] - self.slack) * self.inverse - 1.0 - 1e-7).ceil();
+            let hi = ((q.hi[a] + self.slack) * self.inverse + 1e-7).floor();
+            let first = f64::from(self.origin[a]);
+            let last = first + (self.dims[a] - 1) as f64;
+            let (lo, hi) = (lo.max(first), hi.min(last));
+            if lo > hi {
+                return;
+            }
+            *r = ((lo - first) as usize, (hi - first) as usize);
+            cells = cells.saturating_mul(r.1 - r.0 + 1);
+        }
+        if cells > self.len {
+            // A box over much of the grid: every body is cheaper than every cell.
+            for j in 0..self.len {
+                if boxes[j].overlaps(q) && self.present[j] {
+                    f(j);
+                }
+            }
+            return;
+        }
+        let [nx, ny, _] = self.dims;
+        let ([xl, xh], [yl, yh], [zl, zh]) = (
+            [range[0].0, range[0].1],
+            [range[1].0, range[1].1],
+            [range[2].0, range[2].1],
+        );
+        for z in zl..=zh {
+            for y in yl..=yh {
+                let row = xl + nx * (y + ny * z);
+                let (s, e) = (
+                    self.start[row] as usize,
+                    self.start[row + (xh - xl) + 1] as usize,
+                );
+                for j in s..e {
+                    if boxes[j].overlaps(q) && self.present[j] {
+                        f(j);
+                    }
+                }
+            }
+        }
+    }
+}

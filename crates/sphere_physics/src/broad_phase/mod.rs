@@ -1,0 +1,264 @@
+//! Broad phase: which bodies' boxes may overlap, in O(1) per body.
+//!
+//! Two tiers. Bodies of the scene's typical size (up to twice the median box) go to a dense
+//! uniform [`Grid`] with cells the size of the largest of them, sorted by cell, so a query
+//! reads nine short ranges of consecutive bodies. Everything else (a dome, walls, big balls, a
+//! body that strays far from the others, a body whose box outgrows its cell after a collision)
+//! goes to a [`Hierarchy`] of grids whose cells double from level to level. The step works in
+//! the grid's order ([`BroadPhase::sort`]): neighbours in space are neighbours in memory.
+//! Scenes of a few bodies skip both: all pairs are cheaper. Nothing allocates once the buffers
+//! have grown to the scene.
+
+mod grid;
+mod hierarchy;
+
+use glam::DVec3;
+
+use grid::{Cell, Grid};
+use hierarchy::Hierarchy;
+
+/// Axis-aligned box.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Aabb {
+    pub lo: DVec3,
+    pub hi: DVec3,
+}
+
+impl Aabb {
+    /// The box around a sphere of `radius` swept from `from` to `to`, grown by `margin`.
+    pub fn swept(from: DVec3, to: DVec3, radius: f64, margin: f64) -> Self {
+        let r = DVec3::splat(radius + margin);
+        Aabb {
+            lo: from.min(to) - r,
+            hi: from.max(to) + r,
+        }
+    }
+
+    #[inline]
+    pub fn overlaps(&self, other: &Aabb) -> bool {
+        self.lo.cmple(other.hi).all() && other.lo.cmple(self.hi).all()
+    }
+
+    fn extent(&self) -> f64 {
+        (self.hi - self.lo).max_element()
+    }
+}
+
+/// Below this many bodies, all pairs are tested directly.
+const SMALL_SCENE: usize = 24;
+
+/// The broad phase (see the module docs). Keeps its buffers between steps.
+#[derive(Debug, Default)]
+pub(crate) struct BroadPhase {
+    /// All pairs directly (small scenes).
+    brute: bool,
+    grid: Grid,
+    hierarchy: Hierarchy,
+    /// The typical box size: the grid's cell and the hierarchy's finest.
+    base: f64,
+    origin: Cell,
+    dims: [usize; 3],
+    /// New index `p` is old index `permutation[p]`.
+    permutation: Vec<u32>,
+    /// Each body's grid cell (in the order given to `sort`), if it goes to the grid.
+    cells: Vec<Option<Cell>>,
+    /// The grid bodies' cells in the new order.
+    sorted_cells: Vec<Cell>,
+    counts: Vec<u32>,
+    scratch: Vec<f64>,
+    coordinates: Vec<i32>,
+}
+
+impl BroadPhase {
+    /// Chooses the order to step `boxes` in and returns it (new index `p` is old index
+    /// `permutation[p]`), or `None` to keep the given order (small scenes). Then call
+    /// [`BroadPhase::build`] with the boxes in that order.
+    pub fn sort(&mut self, boxes: &[Aabb]) -> Option<&[u32]> {
+        let n = boxes.len();
+        self.brute = n <= SMALL_SCENE;
+        if self.brute {
+            return None;
+        }
+        self.base = self.typical_extent(boxes);
+        self.grid.set_cell(self.base);
+        self.cells.clear();
+        self.cells
+            .extend(boxes.iter().map(|b| self.grid.cell_of(b)));
+        self.choose_block(n);
+        let (origin, dims) = (self.origin, self.dims);
+        let index = |k: Cell| {
+            let (x, y, z) = (
+                (k[0] - origin[0]) as usize,
+                (k[1] - origin[1]) as usize,
+                (k[2] - origin[2]) as usize,
+            );
+            x + dims[0] * (y + dims[1] * z)
+        };
+        // Counting sort by cell; the rest after, in their order.
+        let total = dims[0] * dims[1] * dims[2];
+        self.counts.clear();
+        self.counts.resize(total + 1, 0);
+        let mut in_grid = 0;
+        for k in self.cells.iter().flatten() {
+            self.counts[index(*k) + 1] += 1;
+            in_grid += 1;
+        }
+        for c in 0..total {
+            self.counts[c + 1] += self.counts[c];
+        }
+        self.permutation.clear();
+        self.permutation.resize(n, 0);
+        self.sorted_cells.clear();
+        self.sorted_cells.resize(in_grid, [0; 3]);
+        let mut rest = in_grid;
+        for (i, cell) in self.cells.iter().enumerate() {
+            match cell {
+                Some(k) => {
+                    let slot = &mut self.counts[index(*k)];
+                    self.permutation[*slot as usize] = i as u32;
+                    self.sorted_cells[*slot as usize] = *k;
+                    *slot += 1;
+                }
+                None => {
+                    self.permutation[rest] = i as u32;
+                    rest += 1;
+                }
+            }
+        }
+        Some(&self.permutation)
+    }
+
+    /// The typical box size: the largest box up to twice the median size.
+    fn typical_extent(&mut self, boxes: &[Aabb]) -> f64 {
+        self.scratch.clear();
+        self.scratch
+            .extend(boxes.iter().map(Aabb::extent).filter(|e| e.is_finite()));
+        if self.scratch.is_empty() {
+            return 1.0;
+        }
+        let middle = self.scratch.len() / 2;
+        let median = *self
+            .scratch
+            .select_nth_unstable_by(middle, f64::total_cmp)
+            .1;
+        let typical = self
+            .scratch
+            .iter()
+            .copied()
+            .filter(|&e| e <= 2.0 * median)
+            .fold(0.0f64, f64::max);
+        if typical > 0.0 { typical } else { 1.0 }
+    }
+
+    /// The block of cells the grid spans: all the grid bodies' cells, cut down to at most
+    /// about four cells per body (stragglers go to the hierarchy instead).
+    fn choose_block(&mut self, n: usize) {
+        let limit = 4 * n as u64 + 64;
+        let mut lo = [i32::MAX; 3];
+        let mut hi = [i32::MIN; 3];
+        for k in self.cells.iter().flatten() {
+            for a in 0..3 {
+                lo[a] = lo[a].min(k[a]);
+                hi[a] = hi[a].max(k[a]);
+            }
+        }
+        if lo[0] > hi[0] {
+            (self.origin, self.dims) = ([0; 3], [1; 3]);
+            return;
+        }
+        let volume = |lo: &[i32; 3], hi: &[i32; 3]| {
+            (0..3)
+                .map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 1) as u64)
+                .fold(1u64, u64::saturating_mul)
+        };
+        if volume(&lo, &hi) > limit {
+            // Keep the middle 99% on each axis, then trim the longest axis until it fits.
+            for a in 0..3 {
+                self.coordinates.clear();
+                self.coordinates
+                    .extend(self.cells.iter().flatten().map(|k| k[a]));
+                let m = self.coordinates.len();
+                let low = *self.coordinates.select_nth_unstable(m / 200).1;
+                let high = *self.coordinates.select_nth_unstable(m - 1 - m / 200).1;
+                (lo[a], hi[a]) = (low, high);
+            }
+            while volume(&lo, &hi) > limit {
+                let a = (0..3)
+                    .max_by_key(|&a| i64::from(hi[a]) - i64::from(lo[a]))
+                    .unwrap_or(0);
+                let cut = ((i64::from(hi[a]) - i64::from(lo[a])) / 16).max(1) as i32;
+                lo[a] += cut;
+                hi[a] = (hi[a] - cut).max(lo[a]);
+            }
+            for cell in &mut self.cells {
+                if let Some(k) = cell
+                    && (0..3).any(|a| k[a] < lo[a] || k[a] > hi[a])
+                {
+                    *cell = None;
+                }
+            }
+        }
+        self.origin = lo;
+        self.dims = [0, 1, 2].map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 1) as usize);
+    }
+
+    /// Builds both tiers for `boxes`, in the order [`BroadPhase::sort`] chose.
+    pub fn build(&mut self, boxes: &[Aabb]) {
+        if self.brute {
+            return;
+        }
+        self.grid.layout(self.origin, self.dims, &self.sorted_cells);
+        self.hierarchy
+            .rebuild(boxes, self.sorted_cells.len(), self.base);
+    }
+
+    /// Body `i`'s box is now `b`.
+    pub fn update(&mut self, i: usize, b: &Aabb) {
+        if self.brute {
+            return;
+        }
+        if self.grid.holds(i) && self.grid.keep(i, b) {
+            return;
+        }
+        self.hierarchy.update(i, b);
+    }
+
+    /// Calls `f(i, j)` with `i < j` for every pair of overlapping boxes, each pair once.
+    /// Call right after [`BroadPhase::build`] with the same boxes.
+    pub fn pairs(&self, boxes: &[Aabb], mut f: impl FnMut(usize, usize)) {
+        if self.brute {
+            for i in 0..boxes.len() {
+                for j in i + 1..boxes.len() {
+                    if boxes[i].overlaps(&boxes[j]) {
+                        f(i, j);
+                    }
+                }
+            }
+            return;
+        }
+        self.grid.pairs(boxes, &mut f);
+        self.hierarchy.pairs(boxes, &mut f);
+        for (j, bj) in boxes.iter().enumerate().skip(self.grid.len()) {
+            self.grid.visit(bj, boxes, &mut |i| f(i, j));
+        }
+    }
+
+    /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s (`boxes` current).
+    pub fn overlapping(&self, i: usize, boxes: &[Aabb], mut f: impl FnMut(usize)) {
+        let bi = &boxes[i];
+        if self.brute {
+            for (j, bj) in boxes.iter().enumerate() {
+                if j != i && bi.overlaps(bj) {
+                    f(j);
+                }
+            }
+            return;
+        }
+        self.grid.visit(bi, boxes, &mut |j| {
+            if j != i {
+                f(j);
+            }
+        });
+        self.hierarchy.overlapping(i, bi, boxes, f);
+    }
+}

@@ -201,8 +201,8 @@ pub(crate) struct StepContext<'a> {
 }
 
 impl Solver {
-    /// Advances `bodies` (all live, in id order) by `ctx.dt`, filling the collision counters of
-    /// `stats` and `self.collisions`.
+    /// Advances `bodies` (all live, in id order) by `ctx.dt`, filling the collision counters,
+    /// energies and momentum of `stats`, and `self.collisions`.
     pub fn step(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
         let dt = ctx.dt;
         let settings = ctx.settings;
@@ -344,7 +344,9 @@ impl Solver {
             self.requery_touched(event.time, ctx, stats);
         }
 
+        // Write back, summing the energies and momentum while each body is at hand.
         self.finals.clear();
+        let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
         for (&i, segment) in self.order.iter().zip(&self.segments) {
             let body = &mut bodies[i as usize];
             let mut position = segment.position_at(dt);
@@ -355,7 +357,16 @@ impl Solver {
             body.desc.position = position;
             body.desc.velocity = velocity;
             self.finals.push(position);
+            if !body.is_fixed() {
+                let mass = body.mass();
+                kinetic += 0.5 * mass * velocity.length_squared();
+                potential -= (mass * settings.gravity + body.force()).dot(position);
+                momentum += mass * velocity;
+            }
         }
+        stats.kinetic_energy = kinetic;
+        stats.potential_energy = potential;
+        stats.momentum = momentum;
         // Two bodies overlapping now had overlapping boxes when either last changed, so they
         // were tested then: the tested pairs are enough to find the largest overlap. Read in
         // solver order, where neighbours in space are neighbours in memory.

@@ -69,8 +69,15 @@ impl Grid {
         })
     }
 
+    /// Where each cell's bodies start (dense index over the block; one more for the end).
+    pub fn set_start(&mut self, start: &[u32]) {
+        self.start.clear();
+        self.start.extend_from_slice(start);
+    }
+
     /// Lays the grid out over the block `origin`, `dims` for bodies `0..cells.len()`, already
-    /// sorted by the dense index of their cells (`cells` are theirs, in that order).
+    /// sorted by the dense index of their cells (`cells` are theirs, in that order) as
+    /// [`Grid::set_start`] says.
     pub fn layout(&mut self, origin: Cell, dims: [usize; 3], cells: &[Cell]) {
         self.origin = origin;
         self.dims = dims;
@@ -79,25 +86,6 @@ impl Grid {
         self.cells.extend_from_slice(cells);
         self.present.clear();
         self.present.resize(cells.len(), true);
-        let total = dims[0] * dims[1] * dims[2];
-        self.start.clear();
-        self.start.resize(total + 1, 0);
-        for k in cells {
-            let c = self.index(*k);
-            self.start[c + 1] += 1;
-        }
-        for c in 0..total {
-            self.start[c + 1] += self.start[c];
-        }
-    }
-
-    /// The dense index of cell `k` (inside the block).
-    #[inline]
-    pub fn index(&self, k: Cell) -> usize {
-        let x = (k[0] - self.origin[0]) as usize;
-        let y = (k[1] - self.origin[1]) as usize;
-        let z = (k[2] - self.origin[2]) as usize;
-        x + self.dims[0] * (y + self.dims[1] * z)
     }
 
     /// Bodies `0..len()` are (or were, at the start of the step) the grid's.
@@ -122,53 +110,40 @@ impl Grid {
     }
 
     /// Calls `f(i, j)` with `i < j` for every pair of grid bodies whose boxes overlap, each
-    /// pair once: a cell with itself and its 13 neighbours that follow it. Call right after
-    /// [`Grid::layout`].
+    /// pair once: a cell with itself and its 13 neighbours that follow it, body by body (empty
+    /// cells cost nothing). Call right after [`Grid::layout`].
     pub fn pairs(&self, boxes: &[Aabb], f: &mut impl FnMut(usize, usize)) {
         let [nx, ny, nz] = self.dims;
         let start = &self.start;
-        let mut c = 0;
-        for z in 0..nz {
-            for y in 0..ny {
-                for x in 0..nx {
-                    let (s, e) = (start[c] as usize, start[c + 1] as usize);
-                    if s == e {
-                        c += 1;
-                        continue;
+        for i in 0..self.len {
+            let k = self.cells[i];
+            let (x, y, z) = (
+                (k[0] - self.origin[0]) as usize,
+                (k[1] - self.origin[1]) as usize,
+                (k[2] - self.origin[2]) as usize,
+            );
+            let c = x + nx * (y + ny * z);
+            // Own cell (after i) and the next along x: one range. Then four rows of three.
+            let own_end = start[c + 1 + usize::from(x + 1 < nx)] as usize;
+            let bi = &boxes[i];
+            for j in i + 1..own_end {
+                if bi.overlaps(&boxes[j]) {
+                    f(i, j);
+                }
+            }
+            let xl = x.saturating_sub(1);
+            let xh = (x + 1).min(nx - 1);
+            for (dy, dz) in [(1isize, 0usize), (-1, 1), (0, 1), (1, 1)] {
+                let yy = y as isize + dy;
+                let zz = z + dz;
+                if yy < 0 || yy as usize >= ny || zz >= nz {
+                    continue;
+                }
+                let row = xl + nx * (yy as usize + ny * zz);
+                for j in start[row] as usize..start[row + (xh - xl) + 1] as usize {
+                    if bi.overlaps(&boxes[j]) {
+                        f(i, j);
                     }
-                    // Own cell and the next along x: one range. Then four rows of three.
-                    let own_end = start[c + 1 + usize::from(x + 1 < nx)] as usize;
-                    let xl = x.saturating_sub(1);
-                    let xh = (x + 1).min(nx - 1);
-                    let mut rows = [(0usize, 0usize); 4];
-                    for (r, (dy, dz)) in [(1isize, 0usize), (-1, 1), (0, 1), (1, 1)]
-                        .into_iter()
-                        .enumerate()
-                    {
-                        let yy = y as isize + dy;
-                        let zz = z + dz;
-                        if yy < 0 || yy as usize >= ny || zz >= nz {
-                            continue;
-                        }
-                        let row = xl + nx * (yy as usize + ny * zz);
-                        rows[r] = (start[row] as usize, start[row + (xh - xl) + 1] as usize);
-                    }
-                    for i in s..e {
-                        let bi = &boxes[i];
-                        for j in i + 1..own_end {
-                            if bi.overlaps(&boxes[j]) {
-                                f(i, j);
-                            }
-                        }
-                        for &(rs, re) in &rows {
-                            for j in rs..re {
-                                if bi.overlaps(&boxes[j]) {
-                                    f(i, j);
-                                }
-                            }
-                        }
-                    }
-                    c += 1;
                 }
             }
         }

@@ -20,9 +20,6 @@ const NONE: u32 = u32::MAX;
 /// A level no body is on: marks sorted entries of bodies that moved to the overlay.
 const GONE: u32 = u32::MAX;
 
-/// The level of a body the hierarchy does not hold.
-const ABSENT: u32 = u32::MAX - 1;
-
 /// Levels: cells from `base` to `base · 2^40`.
 const LEVELS: usize = 41;
 
@@ -88,6 +85,11 @@ pub(crate) struct Hierarchy {
     overlay_heads: Vec<u32>,
     next: Vec<u32>,
     prev: Vec<u32>,
+    /// Body `i`'s entries in the arrays above are this step's when `stamp[i] == epoch`;
+    /// otherwise the hierarchy does not hold it. (The arrays are never cleared: a step costs
+    /// the bodies held, not all bodies.)
+    stamp: Vec<u32>,
+    epoch: u32,
     overlay_level_counts: Vec<u32>,
     /// The highest level any body has been on this step.
     highest: usize,
@@ -121,7 +123,19 @@ impl Hierarchy {
         let buckets = 1usize << (3 * self.bits);
         self.mask = buckets - 1;
 
-        self.keys.clear();
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+        if self.stamp.len() < n {
+            self.stamp.resize(n, 0);
+            self.keys.resize(n, CellKey::default());
+            self.sorted_position.resize(n, 0);
+            self.in_overlay.resize(n, false);
+            self.next.resize(n, NONE);
+            self.prev.resize(n, NONE);
+        }
         self.level_counts.clear();
         self.level_counts.resize(LEVELS, 0);
         self.level_extents.clear();
@@ -133,11 +147,6 @@ impl Hierarchy {
         self.members.resize_with(LEVELS, Vec::new);
         self.members.iter_mut().for_each(Vec::clear);
         self.highest = 0;
-        let absent = CellKey {
-            level: ABSENT,
-            ..Default::default()
-        };
-        self.keys.resize(held, absent);
         for (i, b) in boxes.iter().enumerate().skip(held) {
             let key = self.key_of(b);
             self.highest = self.highest.max(key.level as usize);
@@ -149,7 +158,9 @@ impl Hierarchy {
             *extent = extent.max(b.extent());
             let bucket = self.bucket(&key);
             self.start[bucket + 1] += 1;
-            self.keys.push(key);
+            self.keys[i] = key;
+            self.stamp[i] = self.epoch;
+            self.in_overlay[i] = false;
         }
         for b in 0..buckets {
             self.start[b + 1] += self.start[b];
@@ -161,10 +172,9 @@ impl Hierarchy {
         self.sorted_keys.resize(m, CellKey::default());
         self.sorted_boxes.clear();
         self.sorted_boxes.resize(m, Aabb::default());
-        self.sorted_position.clear();
-        self.sorted_position.resize(n, 0);
         // Place bodies; `start[b]` ends as the end of bucket b - 1's range, so shift back after.
-        for (i, key) in self.keys.iter().enumerate().skip(held) {
+        for i in held..n {
+            let key = &self.keys[i];
             let b = self.bucket(key);
             let p = self.start[b] as usize;
             self.start[b] += 1;
@@ -178,14 +188,8 @@ impl Hierarchy {
         }
         self.start[0] = 0;
 
-        self.in_overlay.clear();
-        self.in_overlay.resize(n, false);
         self.overlay_heads.clear();
         self.overlay_heads.resize(buckets, NONE);
-        self.next.clear();
-        self.next.resize(n, NONE);
-        self.prev.clear();
-        self.prev.resize(n, NONE);
     }
 
     #[inline]
@@ -238,7 +242,8 @@ impl Hierarchy {
         let extent = &mut self.level_extents[key.level as usize];
         *extent = extent.max(b.extent());
         self.highest = self.highest.max(key.level as usize);
-        if self.keys[i].level == ABSENT {
+        if self.stamp[i] != self.epoch {
+            self.stamp[i] = self.epoch;
             self.in_overlay[i] = true;
             self.keys[i] = key;
             self.level_counts[key.level as usize] += 1;
@@ -415,7 +420,7 @@ impl Hierarchy {
             if cells > f64::from(count) + 27.0 {
                 // A big box over a fine level: scanning the level's bodies is cheaper.
                 for (j, key) in self.keys.iter().enumerate() {
-                    if key.level as usize == level {
+                    if key.level as usize == level && self.stamp[j] == self.epoch {
                         f(j);
                     }
                 }

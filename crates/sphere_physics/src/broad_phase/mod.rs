@@ -106,6 +106,7 @@ impl BroadPhase {
         for c in 0..total {
             self.counts[c + 1] += self.counts[c];
         }
+        self.grid.set_start(&self.counts);
         self.permutation.clear();
         self.permutation.resize(n, 0);
         self.sorted_cells.clear();
@@ -129,10 +130,17 @@ impl BroadPhase {
     }
 
     /// The typical box size: the largest box up to twice the median size.
+    /// The median is taken over at most 4096 boxes spread through the scene.
     fn typical_extent(&mut self, boxes: &[Aabb]) -> f64 {
+        let stride = boxes.len().div_ceil(4096).max(1);
         self.scratch.clear();
-        self.scratch
-            .extend(boxes.iter().map(Aabb::extent).filter(|e| e.is_finite()));
+        self.scratch.extend(
+            boxes
+                .iter()
+                .step_by(stride)
+                .map(Aabb::extent)
+                .filter(|e| e.is_finite()),
+        );
         if self.scratch.is_empty() {
             return 1.0;
         }
@@ -141,19 +149,19 @@ impl BroadPhase {
             .scratch
             .select_nth_unstable_by(middle, f64::total_cmp)
             .1;
-        let typical = self
-            .scratch
+        let typical = boxes
             .iter()
-            .copied()
+            .map(Aabb::extent)
             .filter(|&e| e <= 2.0 * median)
             .fold(0.0f64, f64::max);
         if typical > 0.0 { typical } else { 1.0 }
     }
 
     /// The block of cells the grid spans: all the grid bodies' cells, cut down to at most
-    /// about four cells per body (stragglers go to the hierarchy instead).
+    /// 16 cells per body (stragglers go to the hierarchy instead). A shower falls as a lattice
+    /// with one site in eight filled: about ten cells per sphere.
     fn choose_block(&mut self, n: usize) {
-        let limit = 4 * n as u64 + 64;
+        let limit = 16 * n as u64 + 64;
         let mut lo = [i32::MAX; 3];
         let mut hi = [i32::MIN; 3];
         for k in self.cells.iter().flatten() {

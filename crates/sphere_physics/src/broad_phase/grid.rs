@@ -126,11 +126,7 @@ impl Grid {
             // Own cell (after i) and the next along x: one range. Then four rows of three.
             let own_end = start[c + 1 + usize::from(x + 1 < nx)] as usize;
             let bi = &boxes[i];
-            for j in i + 1..own_end {
-                if bi.overlaps(&boxes[j]) {
-                    f(i, j);
-                }
-            }
+            pairs_in(bi, i, boxes, i + 1, own_end, f);
             let xl = x.saturating_sub(1);
             let xh = (x + 1).min(nx - 1);
             for (dy, dz) in [(1isize, 0usize), (-1, 1), (0, 1), (1, 1)] {
@@ -140,11 +136,8 @@ impl Grid {
                     continue;
                 }
                 let row = xl + nx * (yy as usize + ny * zz);
-                for j in start[row] as usize..start[row + (xh - xl) + 1] as usize {
-                    if bi.overlaps(&boxes[j]) {
-                        f(i, j);
-                    }
-                }
+                let (from, to) = (start[row] as usize, start[row + (xh - xl) + 1] as usize);
+                pairs_in(bi, i, boxes, from, to, f);
             }
         }
     }
@@ -198,6 +191,23 @@ impl Grid {
                     }
                 }
             }
+        }
+    }
+}
+
+/// Calls `f(i, j)` for every body `j` in `from..to` whose box overlaps `bi` (body `i`'s).
+#[inline]
+fn pairs_in(
+    bi: &Aabb,
+    i: usize,
+    boxes: &[Aabb],
+    from: usize,
+    to: usize,
+    f: &mut impl FnMut(usize, usize),
+) {
+    for (offset, bj) in boxes[from..to].iter().enumerate() {
+        if bi.overlaps(bj) {
+            f(i, from + offset);
         }
     }
 }

@@ -142,6 +142,27 @@ impl Grid {
         }
     }
 
+    /// Calls `f(j)` for every body `j` in `from..to` still in the grid whose box overlaps `q`.
+    #[inline]
+    fn visit_in(
+        &self,
+        q: &Aabb,
+        boxes: &[Aabb],
+        from: usize,
+        to: usize,
+        f: &mut impl FnMut(usize),
+    ) {
+        for ((offset, bj), &present) in boxes[from..to]
+            .iter()
+            .enumerate()
+            .zip(&self.present[from..to])
+        {
+            if bj.overlaps(q) && present {
+                f(from + offset);
+            }
+        }
+    }
+
     /// Calls `f(j)` for every body `j` in the grid whose box overlaps `q`.
     pub fn visit(&self, q: &Aabb, boxes: &[Aabb], f: &mut impl FnMut(usize)) {
         if self.len == 0 {
@@ -165,11 +186,7 @@ impl Grid {
         }
         if cells > self.len {
             // A box over much of the grid: every body is cheaper than every cell.
-            for j in 0..self.len {
-                if boxes[j].overlaps(q) && self.present[j] {
-                    f(j);
-                }
-            }
+            self.visit_in(q, boxes, 0, self.len, f);
             return;
         }
         let [nx, ny, _] = self.dims;
@@ -185,11 +202,7 @@ impl Grid {
                     self.start[row] as usize,
                     self.start[row + (xh - xl) + 1] as usize,
                 );
-                for j in s..e {
-                    if boxes[j].overlaps(q) && self.present[j] {
-                        f(j);
-                    }
-                }
+                self.visit_in(q, boxes, s, e, f);
             }
         }
     }

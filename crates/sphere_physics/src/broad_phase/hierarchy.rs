@@ -173,14 +173,14 @@ impl Hierarchy {
         self.sorted_boxes.clear();
         self.sorted_boxes.resize(m, Aabb::default());
         // Place bodies; `start[b]` ends as the end of bucket b - 1's range, so shift back after.
-        for (i, b) in boxes.iter().enumerate().skip(held) {
+        for (i, placed) in boxes.iter().enumerate().skip(held) {
             let key = &self.keys[i];
             let b = self.bucket(key);
             let p = self.start[b] as usize;
             self.start[b] += 1;
             self.order[p] = i as u32;
             self.sorted_keys[p] = *key;
-            self.sorted_boxes[p] = *b;
+            self.sorted_boxes[p] = *placed;
             self.sorted_position[i] = p as u32;
         }
         for b in (1..=buckets).rev() {
@@ -254,7 +254,7 @@ impl Hierarchy {
         if !self.in_overlay[i] {
             let p = self.sorted_position[i] as usize;
             if key == self.keys[i] {
-                self.sorted_boxes[p] = *b;
+                self.sorted_boxes[p] = *placed;
                 return;
             }
             // Leave the sorted arrays for the overlay.

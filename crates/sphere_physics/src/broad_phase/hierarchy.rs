@@ -254,7 +254,7 @@ impl Hierarchy {
         if !self.in_overlay[i] {
             let p = self.sorted_position[i] as usize;
             if key == self.keys[i] {
-                self.sorted_boxes[p] = *placed;
+                self.sorted_boxes[p] = *b;
                 return;
             }
             // Leave the sorted arrays for the overlay.

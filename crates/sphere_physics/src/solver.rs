@@ -744,6 +744,11 @@ impl Solver {
         self.tested.push((i as u32, j as u32));
         let d = sj.position_at(t) - si.position_at(t);
         let w = sj.velocity - si.velocity;
+        if d.dot(w) >= 0.0 {
+            // Not closing: both drift in straight lines for the rest of the step, so they only
+            // move apart (either time-of-impact method would say so, after a square root).
+            return;
+        }
         let reach = si.radius + sj.radius;
         if self.creep_scale > 0.0 && d.length_squared() <= (reach * (1.0 + 1e-6)).powi(2) {
             // Touching and closing slower than the creep speed: left to the next step's resting

@@ -8,6 +8,8 @@
 //! new box is still within the envelope (most do: the new box is the rest of the old drift,
 //! turned); otherwise it leaves the grid for the broad phase's general tier.
 
+use glam::DVec3;
+
 use super::Aabb;
 
 /// A cell's coordinates, absolute (cell `k` spans `[k·cell, (k+1)·cell)` on its axis).
@@ -16,10 +18,11 @@ pub(crate) type Cell = [i32; 3];
 /// The dense grid (see the module docs). Keeps its buffers between steps.
 #[derive(Debug, Default)]
 pub(crate) struct Grid {
-    cell: f64,
-    inverse: f64,
+    /// The cell's sides: the typical box per axis (falling spheres sweep tall boxes).
+    cell: DVec3,
+    inverse: DVec3,
     /// How far a box may reach beyond its cell on each side: just under half a cell.
-    slack: f64,
+    slack: DVec3,
     /// The lowest cell of the dense block, and its size in cells per axis.
     origin: Cell,
     dims: [usize; 3],
@@ -40,11 +43,11 @@ fn floor_i32(v: f64) -> i32 {
 }
 
 impl Grid {
-    /// Sets the cell size: boxes up to `largest` across fit their cell's envelope.
-    pub fn set_cell(&mut self, largest: f64) {
+    /// Sets the cell's sides: boxes up to `largest` (per axis) fit their cell's envelope.
+    pub fn set_cell(&mut self, largest: DVec3) {
         self.cell = largest * (1.0 + 1e-5);
-        self.inverse = 1.0 / self.cell;
-        self.slack = 0.5 * self.cell * (1.0 - 1e-6);
+        self.inverse = self.cell.recip();
+        self.slack = self.cell * (0.5 * (1.0 - 1e-6));
     }
 
     /// The cell whose envelope holds `b`, if the box is no larger than the cell allows.
@@ -52,9 +55,9 @@ impl Grid {
     pub fn cell_of(&self, b: &Aabb) -> Option<Cell> {
         let centre = (b.lo + b.hi) * 0.5;
         let k = [
-            floor_i32(centre.x * self.inverse),
-            floor_i32(centre.y * self.inverse),
-            floor_i32(centre.z * self.inverse),
+            floor_i32(centre.x * self.inverse.x),
+            floor_i32(centre.y * self.inverse.y),
+            floor_i32(centre.z * self.inverse.z),
         ];
         self.within(b, k).then_some(k)
     }
@@ -63,8 +66,8 @@ impl Grid {
     #[inline]
     fn within(&self, b: &Aabb, k: Cell) -> bool {
         (0..3).all(|a| {
-            let lo = f64::from(k[a]) * self.cell - self.slack;
-            let hi = f64::from(k[a] + 1) * self.cell + self.slack;
+            let lo = f64::from(k[a]) * self.cell[a] - self.slack[a];
+            let hi = f64::from(k[a] + 1) * self.cell[a] + self.slack[a];
             b.lo[a] >= lo && b.hi[a] <= hi
         })
     }
@@ -173,8 +176,8 @@ impl Grid {
         let mut range = [(0usize, 0usize); 3];
         let mut cells = 1usize;
         for (a, r) in range.iter_mut().enumerate() {
-            let lo = ((q.lo[a] - self.slack) * self.inverse - 1.0 - 1e-7).ceil();
-            let hi = ((q.hi[a] + self.slack) * self.inverse + 1e-7).floor();
+            let lo = ((q.lo[a] - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7).ceil();
+            let hi = ((q.hi[a] + self.slack[a]) * self.inverse[a] + 1e-7).floor();
             let first = f64::from(self.origin[a]);
             let last = first + (self.dims[a] - 1) as f64;
             let (lo, hi) = (lo.max(first), hi.min(last));

@@ -1,9 +1,10 @@
 //! Broad phase: which bodies' boxes may overlap, in O(1) per body.
 //!
-//! Two tiers. Bodies of the scene's typical size (up to twice the median box) go to a dense
-//! uniform [`Grid`] with cells the size of the largest of them, sorted by cell, so a query
-//! reads nine short ranges of consecutive bodies. Everything else (a dome, walls, big balls, a
-//! body that strays far from the others, a body whose box outgrows its cell after a collision)
+//! Two tiers. Bodies of the scene's typical size (per axis, up to twice the median side:
+//! falling spheres sweep tall boxes) go to a dense uniform [`Grid`] with cells the size of the
+//! largest of them, sorted by cell, so a query reads nine short ranges of consecutive bodies.
+//! Everything else (a dome, walls, big balls, a body that strays far from the others, a body
+//! whose box outgrows its cell after a collision)
 //! goes to a [`Hierarchy`] of grids whose cells double from level to level. The step works in
 //! the grid's order ([`BroadPhase::sort`]): neighbours in space are neighbours in memory.
 //! Scenes of a few bodies skip both: all pairs are cheaper. Nothing allocates once the buffers
@@ -79,8 +80,9 @@ impl BroadPhase {
         if self.brute {
             return None;
         }
-        self.base = self.typical_extent(boxes);
-        self.grid.set_cell(self.base);
+        let typical = self.typical_box(boxes);
+        self.base = typical.max_element();
+        self.grid.set_cell(typical);
         self.cells.clear();
         self.cells
             .extend(boxes.iter().map(|b| self.grid.cell_of(b)));
@@ -129,32 +131,38 @@ impl BroadPhase {
         Some(&self.permutation)
     }
 
-    /// The typical box size: the largest box up to twice the median size.
-    /// The median is taken over at most 4096 boxes spread through the scene.
-    fn typical_extent(&mut self, boxes: &[Aabb]) -> f64 {
+    /// The typical box, per axis: the longest side up to twice the median side (the median
+    /// taken over at most 4096 boxes spread through the scene).
+    fn typical_box(&mut self, boxes: &[Aabb]) -> DVec3 {
         let stride = boxes.len().div_ceil(4096).max(1);
-        self.scratch.clear();
-        self.scratch.extend(
-            boxes
+        let mut typical = DVec3::ONE;
+        for a in 0..3 {
+            self.scratch.clear();
+            self.scratch.extend(
+                boxes
+                    .iter()
+                    .step_by(stride)
+                    .map(|b| b.hi[a] - b.lo[a])
+                    .filter(|e| e.is_finite()),
+            );
+            if self.scratch.is_empty() {
+                continue;
+            }
+            let middle = self.scratch.len() / 2;
+            let median = *self
+                .scratch
+                .select_nth_unstable_by(middle, f64::total_cmp)
+                .1;
+            let largest = boxes
                 .iter()
-                .step_by(stride)
-                .map(Aabb::extent)
-                .filter(|e| e.is_finite()),
-        );
-        if self.scratch.is_empty() {
-            return 1.0;
+                .map(|b| b.hi[a] - b.lo[a])
+                .filter(|&e| e <= 2.0 * median)
+                .fold(0.0f64, f64::max);
+            if largest > 0.0 {
+                typical[a] = largest;
+            }
         }
-        let middle = self.scratch.len() / 2;
-        let median = *self
-            .scratch
-            .select_nth_unstable_by(middle, f64::total_cmp)
-            .1;
-        let typical = boxes
-            .iter()
-            .map(Aabb::extent)
-            .filter(|&e| e <= 2.0 * median)
-            .fold(0.0f64, f64::max);
-        if typical > 0.0 { typical } else { 1.0 }
+        typical
     }
 
     /// The block of cells the grid spans: all the grid bodies' cells, cut down to at most

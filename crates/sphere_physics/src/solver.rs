@@ -17,11 +17,20 @@ use crate::response::{GroupContact, resolve, resolve_simultaneous};
 use crate::{Body, Collision, Integrator, Settings, StepStats, Tether, TimeOfImpact};
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
+/// Only what pair tests read, so the event loop's random reads stay small; the rest of a
+/// body's step state is its [`Extra`].
 #[derive(Clone, Copy, Debug)]
 struct Segment {
     t0: f64,
     position: DVec3,
     velocity: DVec3,
+    inverse_mass: f64,
+    radius: f64,
+}
+
+/// The rest of a body's step state, kept in body order (read at impacts and at the end).
+#[derive(Clone, Copy, Debug)]
+struct Extra {
     kick_after: DVec3,
     acceleration: DVec3,
     tether: Option<Tether>,
@@ -31,8 +40,6 @@ struct Segment {
     free_velocity: DVec3,
     /// How far inside the string's length the bent drift dips (its sagitta).
     sag: f64,
-    inverse_mass: f64,
-    radius: f64,
     restitution: f64,
     /// The body's id (records name bodies without reading the body array).
     id: crate::BodyId,
@@ -100,6 +107,8 @@ impl Ord for Event {
 #[derive(Debug, Default)]
 pub(crate) struct Solver {
     segments: Vec<Segment>,
+    /// Each body's [`Extra`], in body order: segment `k`'s is `extras[order[k]]`.
+    extras: Vec<Extra>,
     /// Each segment's version (bumped when its drift changes; older events are stale). Apart
     /// from the segments so the event loop's checks read a small, dense array.
     versions: Vec<u32>,
@@ -209,6 +218,7 @@ impl Solver {
         self.tested.clear();
         self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
+        self.extras.clear();
         self.boxes.clear();
         let mut dynamic = 0u32;
         let mut largest_acceleration = 0.0f64;
@@ -233,19 +243,21 @@ impl Solver {
                 t0: 0.0,
                 position: body.position(),
                 velocity,
+                inverse_mass: body.inverse_mass(),
+                radius: body.radius(),
+            };
+            self.boxes.push(swept_box(&segment, dt, settings));
+            self.segments.push(segment);
+            self.extras.push(Extra {
                 kick_after: kicks.1,
                 acceleration,
                 tether,
                 taut,
                 free_velocity,
                 sag,
-                inverse_mass: body.inverse_mass(),
-                radius: body.radius(),
                 restitution: body.restitution(),
                 id: body.id(),
-            };
-            self.boxes.push(swept_box(&segment, dt, settings));
-            self.segments.push(segment);
+            });
         }
 
         self.resting_scale = if largest_acceleration > 0.0 {
@@ -349,9 +361,10 @@ impl Solver {
         let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
         for (&i, segment) in self.order.iter().zip(&self.segments) {
             let body = &mut bodies[i as usize];
+            let extra = &self.extras[i as usize];
             let mut position = segment.position_at(dt);
-            let mut velocity = segment.velocity + segment.kick_after;
-            if let Some(tether) = segment.tether {
+            let mut velocity = segment.velocity + extra.kick_after;
+            if let Some(tether) = extra.tether {
                 (position, velocity) = taut(position, velocity, tether);
             }
             body.desc.position = position;
@@ -456,7 +469,7 @@ impl Solver {
         let distance = distance_squared.sqrt();
         let normal = d / distance;
         let approach = -(sj.velocity - si.velocity).dot(normal);
-        let press = pressing(si, sj, normal);
+        let press = pressing(self.extra(i), self.extra(j), normal);
         let slop = 0.5 * self.creep_scale * press * ctx.dt + band;
         let bias = (reach - distance - slop).max(0.0) / ctx.dt;
         // Separating as slowly as a resting pair may approach counts too: in a stack all fall
@@ -484,7 +497,7 @@ impl Solver {
                 .resting
                 .iter()
                 .map(|c| {
-                    let (a, b) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
+                    let (a, b) = (self.extra(c.a as usize), self.extra(c.b as usize));
                     self.resting_scale * pressing(a, b, c.normal)
                 })
                 .fold(0.0, f64::max);
@@ -522,8 +535,8 @@ impl Solver {
             stats.collisions += 1;
             stats.resting_contacts += 1;
             self.collisions.push(collision(
-                self.segments[a].id,
-                self.segments[b].id,
+                self.extra(a).id,
+                self.extra(b).id,
                 ctx.start_time,
                 c.normal,
                 sa.position + c.normal * sa.radius,
@@ -535,9 +548,10 @@ impl Solver {
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
             let segment = &mut self.segments[k];
-            if let Some(tether) = segment.tether {
-                segment.free_velocity = segment.velocity;
-                (segment.velocity, segment.taut, segment.sag) =
+            let extra = &mut self.extras[self.order[k] as usize];
+            if let Some(tether) = extra.tether {
+                extra.free_velocity = segment.velocity;
+                (segment.velocity, extra.taut, extra.sag) =
                     chord(segment.position, segment.velocity, tether, ctx.dt);
             }
             self.versions[k] += 1;
@@ -547,22 +561,23 @@ impl Solver {
 
     /// A contact's restitution, and whether it is a resting contact (approaching no faster
     /// than the resting speed: restitution 0).
-    fn restitution(
-        &self,
-        sa: &Segment,
-        sb: &Segment,
-        normal: DVec3,
-        settings: &Settings,
-    ) -> (f64, bool) {
+    fn restitution(&self, a: usize, b: usize, normal: DVec3, settings: &Settings) -> (f64, bool) {
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let (ea, eb) = (self.extra(a), self.extra(b));
         let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-        if approach_speed <= self.resting_scale * pressing(sa, sb, normal) {
+        if approach_speed <= self.resting_scale * pressing(ea, eb, normal) {
             (0.0, true)
         } else {
             let combined = settings
                 .restitution_combine
-                .combine(sa.restitution, sb.restitution);
+                .combine(ea.restitution, eb.restitution);
             (combined, false)
         }
+    }
+
+    /// Segment `k`'s [`Extra`].
+    fn extra(&self, k: usize) -> &Extra {
+        &self.extras[self.order[k] as usize]
     }
 
     /// Gives segment `k` its velocity after an impulse at time `t`: bent along its string if it
@@ -574,9 +589,10 @@ impl Solver {
             return;
         }
         segment.velocity = velocity;
-        if let Some(tether) = segment.tether {
-            segment.free_velocity = velocity;
-            (segment.velocity, segment.taut, segment.sag) =
+        let extra = &mut self.extras[self.order[k] as usize];
+        if let Some(tether) = extra.tether {
+            extra.free_velocity = velocity;
+            (segment.velocity, extra.taut, extra.sag) =
                 chord(segment.position, velocity, tether, ctx.dt - t);
         }
         self.versions[k] += 1;
@@ -586,11 +602,11 @@ impl Solver {
     /// Whether segment `k`'s string is at its length at time `t`: its drift was bent, and at
     /// `t` the sphere is no farther inside the length than the bent drift can dip.
     fn taut_at(&self, k: usize, t: f64) -> bool {
-        let segment = &self.segments[k];
-        match (segment.tether, segment.taut) {
+        let (segment, extra) = (&self.segments[k], self.extra(k));
+        match (extra.tether, extra.taut) {
             (Some(tether), true) => {
                 let distance = (segment.position_at(t) - tether.anchor).length();
-                tether.length - distance <= 1.5 * segment.sag + 1e-12 * tether.length
+                tether.length - distance <= 1.5 * extra.sag + 1e-12 * tether.length
             }
             _ => false,
         }
@@ -626,16 +642,17 @@ impl Solver {
             let k = self.local_bodies[i] as usize;
             let taut = self.taut_at(k, t);
             self.local_taut.push(taut);
+            let extra = self.extras[self.order[k] as usize];
             let segment = &mut self.segments[k];
             segment.advance_to(t);
             self.local_inverse_masses.push(segment.inverse_mass);
-            let mut velocity = if segment.taut && !taut {
+            let mut velocity = if extra.taut && !taut {
                 // Bent for later, slack now: it moves freely.
-                segment.free_velocity
+                extra.free_velocity
             } else {
                 segment.velocity
             };
-            if let (Some(tether), true) = (segment.tether, taut) {
+            if let (Some(tether), true) = (extra.tether, taut) {
                 // The drift is a chord of the string's sphere; the sphere itself is on that
                 // sphere, moving tangent to it. Put it there (a move of at most the chord's
                 // sagitta, ~(v·dt)²/8L) and drop the drift's radial part (the string's pull).
@@ -659,7 +676,8 @@ impl Solver {
                 continue;
             }
             let normal = d / distance;
-            let (restitution, resting) = self.restitution(sa, sb, normal, settings);
+            let (restitution, resting) =
+                self.restitution(e.a as usize, e.b as usize, normal, settings);
             self.local_resting.push(resting);
             self.local_contacts.push(GroupContact {
                 a: local(&self.local_bodies, e.a),
@@ -672,7 +690,8 @@ impl Solver {
         // Taut strings of the bodies involved, each to a virtual fixed anchor.
         for (local, &k) in self.local_bodies.iter().enumerate() {
             let segment = &self.segments[k as usize];
-            if let (Some(tether), true) = (segment.tether, self.local_taut[local]) {
+            let extra = self.extra(k as usize);
+            if let (Some(tether), true) = (extra.tether, self.local_taut[local]) {
                 let r = segment.position - tether.anchor;
                 let distance = r.length();
                 if distance > 0.0 {
@@ -712,8 +731,8 @@ impl Solver {
             stats.resting_contacts += u32::from(resting);
             let sa = &self.segments[a];
             self.collisions.push(collision(
-                self.segments[a].id,
-                self.segments[b].id,
+                self.extra(a).id,
+                self.extra(b).id,
                 ctx.start_time + t,
                 c.normal,
                 sa.position + c.normal * sa.radius,
@@ -756,7 +775,7 @@ impl Solver {
             let distance = d.length();
             if distance > 0.0 {
                 let normal = d / distance;
-                let creep = self.creep_scale * pressing(si, sj, normal);
+                let creep = self.creep_scale * pressing(self.extra(i), self.extra(j), normal);
                 if -w.dot(normal) <= creep {
                     return;
                 }
@@ -791,11 +810,12 @@ impl Solver {
             return;
         }
         for k in [a, b] {
+            let extra = &self.extras[self.order[k] as usize];
             let segment = &mut self.segments[k];
             segment.advance_to(t);
-            if segment.taut {
+            if extra.taut {
                 // Bent for later, slack now: it moves freely.
-                segment.velocity = segment.free_velocity;
+                segment.velocity = extra.free_velocity;
             }
         }
         let (sa, sb) = (self.segments[a], self.segments[b]);
@@ -805,7 +825,7 @@ impl Solver {
             return;
         }
         let normal = d / distance;
-        let (restitution, resting) = self.restitution(&sa, &sb, normal, ctx.settings);
+        let (restitution, resting) = self.restitution(a, b, normal, ctx.settings);
         let r = resolve(
             sa.inverse_mass,
             sb.inverse_mass,
@@ -819,8 +839,8 @@ impl Solver {
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);
         self.collisions.push(collision(
-            sa.id,
-            sb.id,
+            self.extra(a).id,
+            self.extra(b).id,
             ctx.start_time + t,
             normal,
             sa.position + normal * sa.radius,
@@ -865,7 +885,7 @@ impl Solver {
 /// The acceleration pressing a pair together along `normal` (from `a` to `b`): the larger
 /// component of either body's own acceleration along the line of centres. A ball on another
 /// under gravity presses with g; two balls side by side (a cradle) do not press at all.
-fn pressing(a: &Segment, b: &Segment, normal: DVec3) -> f64 {
+fn pressing(a: &Extra, b: &Extra, normal: DVec3) -> f64 {
     a.acceleration
         .dot(normal)
         .abs()

@@ -39,7 +39,10 @@ pub(crate) struct Grid {
 /// `floor(v)` as an integer, saturating far outside any scene.
 #[inline]
 fn floor_i32(v: f64) -> i32 {
-    v.clamp(-1.0e9, 1.0e9).floor() as i32
+    // Truncate, then step down for negatives: `f64::floor` is a library call on baseline x86-64.
+    let v = v.clamp(-1.0e9, 1.0e9);
+    let t = v as i32;
+    t - i32::from(v < f64::from(t))
 }
 
 impl Grid {
@@ -160,7 +163,7 @@ impl Grid {
             .enumerate()
             .zip(&self.present[from..to])
         {
-            if bj.overlaps(q) && present {
+            if bj.overlaps(q) & present {
                 f(from + offset);
             }
         }
@@ -176,10 +179,11 @@ impl Grid {
         let mut range = [(0usize, 0usize); 3];
         let mut cells = 1usize;
         for (a, r) in range.iter_mut().enumerate() {
-            let lo = ((q.lo[a] - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7).ceil();
-            let hi = ((q.hi[a] + self.slack[a]) * self.inverse[a] + 1e-7).floor();
-            let first = f64::from(self.origin[a]);
-            let last = first + (self.dims[a] - 1) as f64;
+            // ceil(v) = -floor(-v)
+            let lo = -floor_i32(-((q.lo[a] - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7));
+            let hi = floor_i32((q.hi[a] + self.slack[a]) * self.inverse[a] + 1e-7);
+            let first = self.origin[a];
+            let last = first + (self.dims[a] - 1) as i32;
             let (lo, hi) = (lo.max(first), hi.min(last));
             if lo > hi {
                 return;

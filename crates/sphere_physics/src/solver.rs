@@ -127,6 +127,8 @@ pub(crate) struct Solver {
     resting: Vec<RestingContact>,
     /// Solver index `p` is body index `order[p]` (the broad phase's spatial order).
     order: Vec<u32>,
+    /// Body `i` is solver index `position_of[i]` (the inverse of `order`).
+    position_of: Vec<u32>,
     scratch_segments: Vec<Segment>,
     scratch_boxes: Vec<Aabb>,
     /// Every pair tested this step: a superset of the pairs that can overlap at its end.
@@ -356,12 +358,18 @@ impl Solver {
             self.requery_touched(event.time, ctx, stats);
         }
 
-        // Write back, summing the energies and momentum while each body is at hand.
+        // Write back in body order (bodies and extras read in order, segments gathered),
+        // summing the energies and momentum while each body is at hand.
         self.finals.clear();
+        self.finals.resize(self.segments.len(), DVec3::ZERO);
+        self.position_of.clear();
+        self.position_of.resize(self.order.len(), 0);
+        for (p, &i) in self.order.iter().enumerate() {
+            self.position_of[i as usize] = p as u32;
+        }
         let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
-        for (&i, segment) in self.order.iter().zip(&self.segments) {
-            let body = &mut bodies[i as usize];
-            let extra = &self.extras[i as usize];
+        for ((body, extra), &p) in bodies.iter_mut().zip(&self.extras).zip(&self.position_of) {
+            let segment = &self.segments[p as usize];
             let mut position = segment.position_at(dt);
             let mut velocity = segment.velocity + extra.kick_after;
             if let Some(tether) = extra.tether {
@@ -369,7 +377,7 @@ impl Solver {
             }
             body.desc.position = position;
             body.desc.velocity = velocity;
-            self.finals.push(position);
+            self.finals[p as usize] = position;
             if !body.is_fixed() {
                 let mass = body.mass();
                 kinetic += 0.5 * mass * velocity.length_squared();

@@ -35,14 +35,11 @@ impl Aabb {
         }
     }
 
-    /// Whether the boxes meet (touching counts). Branch-free: in the broad phase's scans most
-    /// candidates miss on some axis, unpredictably.
+    /// Whether the boxes meet (touching counts). Branch-free (min and max, then one test): in
+    /// the broad phase's scans most candidates miss on some axis, unpredictably.
     #[inline]
     pub fn overlaps(&self, other: &Aabb) -> bool {
-        let x = (self.lo.x <= other.hi.x) & (other.lo.x <= self.hi.x);
-        let y = (self.lo.y <= other.hi.y) & (other.lo.y <= self.hi.y);
-        let z = (self.lo.z <= other.hi.z) & (other.lo.z <= self.hi.z);
-        x & y & z
+        (self.hi.min(other.hi) - self.lo.max(other.lo)).min_element() >= 0.0
     }
 
     fn extent(&self) -> f64 {

@@ -484,8 +484,7 @@ impl Solver {
         let normal = d / distance;
         let approach = -(sj.velocity - si.velocity).dot(normal);
         let press = pressing(self.extra(i), self.extra(j), normal);
-        let slop = 0.5 * self.creep_scale * press * ctx.dt + band;
-        let bias = (reach - distance - slop).max(0.0) / ctx.dt;
+        let bias = self.correction(reach - distance, band, press, ctx);
         // Separating as slowly as a resting pair may approach counts too: in a stack all fall
         // together at the start of the step, and only the solve shows which contacts hold.
         let window = self.resting_scale * press;
@@ -501,6 +500,13 @@ impl Solver {
             bias,
         });
         true
+    }
+
+    /// The separating speed that undoes, over a step, the part of a resting pair's `overlap`
+    /// deeper than a quarter of the creep distance (plus the contact `band`).
+    fn correction(&self, overlap: f64, band: f64, press: f64, ctx: &StepContext<'_>) -> f64 {
+        let slop = 0.25 * self.creep_scale * press * ctx.dt + band;
+        (overlap - slop).max(0.0) / ctx.dt
     }
 
     /// Solves all resting contacts at once (projected Gauss–Seidel, restitution 0), then marks
@@ -845,7 +851,7 @@ impl Solver {
         }
         let normal = d / distance;
         let (restitution, resting) = self.restitution(a, b, normal, ctx.settings);
-        let r = resolve(
+        let mut r = resolve(
             sa.inverse_mass,
             sb.inverse_mass,
             sa.velocity,
@@ -853,6 +859,21 @@ impl Solver {
             normal,
             restitution,
         );
+        if resting {
+            // Keep undoing an overlap deeper than the allowance, as the step's resting solve
+            // began to: stopping the pair dead here would cancel that and let a pressed pile
+            // sink a little every step.
+            let reach = sa.radius + sb.radius;
+            let band = reach * 1e-6 + ctx.settings.tolerance.epsilon() * (1.0 + reach);
+            let press = pressing(self.extra(a), self.extra(b), normal);
+            let bias = self.correction(reach - distance, band, press, ctx);
+            if bias > 0.0 {
+                let extra = bias / (sa.inverse_mass + sb.inverse_mass);
+                r.velocity_a -= normal * (extra * sa.inverse_mass);
+                r.velocity_b += normal * (extra * sb.inverse_mass);
+                r.impulse += extra;
+            }
+        }
         self.set_velocity(a, r.velocity_a, t, ctx);
         self.set_velocity(b, r.velocity_b, t, ctx);
         stats.collisions += 1;

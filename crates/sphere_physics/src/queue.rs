@@ -11,26 +11,35 @@ pub(crate) trait Timed: Ord + Copy {
     fn time(&self) -> f64;
 }
 
+/// No item (end of a bucket's list).
+const NONE: u32 = u32::MAX;
+
 #[derive(Debug)]
 pub(crate) struct EventQueue<T: Timed> {
-    /// Items beyond the current bucket, unordered.
-    buckets: Vec<Vec<T>>,
+    /// Items pushed beyond the current bucket, in push order; each bucket's items form a list
+    /// through `next`, starting at `heads[bucket]`. One array for all buckets, so its capacity
+    /// settles after a few steps and pushing allocates nothing.
+    items: Vec<T>,
+    next: Vec<u32>,
+    heads: Vec<u32>,
     /// The current bucket's items (and any pushed into it), ordered.
     current: BinaryHeap<Reverse<T>>,
     /// The current bucket.
     at: usize,
-    /// Buckets in use (`buckets` may hold more, empty).
+    /// Buckets in use.
     count: usize,
     /// Buckets per unit of time.
     scale: f64,
-    /// Items waiting in `buckets`.
+    /// Items waiting in later buckets.
     waiting: usize,
 }
 
 impl<T: Timed> Default for EventQueue<T> {
     fn default() -> Self {
         Self {
-            buckets: Vec::new(),
+            items: Vec::new(),
+            next: Vec::new(),
+            heads: Vec::new(),
             current: BinaryHeap::new(),
             at: 0,
             count: 0,
@@ -45,12 +54,10 @@ impl<T: Timed> EventQueue<T> {
     /// expected items (`expected` in all). Keeps its buffers.
     pub fn reset(&mut self, span: f64, expected: usize, per_bucket: usize) {
         let count = (expected / per_bucket.max(1)).clamp(1, 1 << 16);
-        if self.buckets.len() < count {
-            self.buckets.resize_with(count, Vec::new);
-        }
-        for bucket in &mut self.buckets[..self.count.max(count)] {
-            bucket.clear();
-        }
+        self.items.clear();
+        self.next.clear();
+        self.heads.clear();
+        self.heads.resize(count, NONE);
         self.count = count;
         self.current.clear();
         self.at = 0;
@@ -75,7 +82,9 @@ impl<T: Timed> EventQueue<T> {
         if b <= self.at {
             self.current.push(Reverse(item));
         } else {
-            self.buckets[b].push(item);
+            self.next.push(self.heads[b]);
+            self.heads[b] = self.items.len() as u32;
+            self.items.push(item);
             self.waiting += 1;
         }
     }
@@ -84,16 +93,12 @@ impl<T: Timed> EventQueue<T> {
     fn fill(&mut self) {
         while self.current.is_empty() && self.waiting > 0 {
             self.at += 1;
-            let bucket = std::mem::take(&mut self.buckets[self.at]);
-            self.waiting -= bucket.len();
-            let mut heap = std::mem::take(&mut self.current).into_vec();
-            heap.clear();
-            heap.extend(bucket.iter().map(|&e| Reverse(e)));
-            self.current = BinaryHeap::from(heap);
-            // Give the bucket its buffer back, emptied.
-            let mut bucket = bucket;
-            bucket.clear();
-            self.buckets[self.at] = bucket;
+            let mut i = self.heads[self.at];
+            while i != NONE {
+                self.current.push(Reverse(self.items[i as usize]));
+                self.waiting -= 1;
+                i = self.next[i as usize];
+            }
         }
     }
 

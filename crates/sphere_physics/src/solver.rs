@@ -143,6 +143,7 @@ pub(crate) struct Solver {
     /// Scratch for simultaneous groups.
     group: Vec<Event>,
     ranges: Vec<std::ops::Range<usize>>,
+    components: Components,
     touched: Vec<u32>,
     local_resting: Vec<bool>,
     local_taut: Vec<bool>,
@@ -153,9 +154,21 @@ pub(crate) struct Solver {
     local_impulses: Vec<f64>,
 }
 
+/// Scratch for [`sort_into_components`], kept so that grouping allocates nothing.
+#[derive(Debug, Default)]
+struct Components {
+    label: Vec<usize>,
+    keyed: Vec<(usize, usize)>,
+    sorted: Vec<Event>,
+}
+
 /// Orders `events` so that events connected by shared bodies are contiguous, and fills `ranges`
 /// with each connected group's range (events keep their time-then-id order within a group).
-fn sort_into_components(events: &mut [Event], ranges: &mut Vec<std::ops::Range<usize>>) {
+fn sort_into_components(
+    events: &mut [Event],
+    ranges: &mut Vec<std::ops::Range<usize>>,
+    scratch: &mut Components,
+) {
     ranges.clear();
     let n = events.len();
     if n <= 1 {
@@ -165,7 +178,9 @@ fn sort_into_components(events: &mut [Event], ranges: &mut Vec<std::ops::Range<u
     // Simultaneous groups are rare and small: label each event with the smallest index it is
     // connected to, until nothing changes.
     let shares = |x: &Event, y: &Event| x.a == y.a || x.a == y.b || x.b == y.a || x.b == y.b;
-    let mut label: Vec<usize> = (0..n).collect();
+    let label = &mut scratch.label;
+    label.clear();
+    label.extend(0..n);
     let mut changed = true;
     while changed {
         changed = false;
@@ -178,10 +193,13 @@ fn sort_into_components(events: &mut [Event], ranges: &mut Vec<std::ops::Range<u
             }
         }
     }
-    let mut keyed: Vec<(usize, usize)> = label.iter().copied().zip(0..n).collect();
+    let keyed = &mut scratch.keyed;
+    keyed.clear();
+    keyed.extend(label.iter().copied().zip(0..n));
     keyed.sort_unstable();
-    let sorted: Vec<Event> = keyed.iter().map(|&(_, i)| events[i]).collect();
-    events.copy_from_slice(&sorted);
+    scratch.sorted.clear();
+    scratch.sorted.extend(keyed.iter().map(|&(_, i)| events[i]));
+    events.copy_from_slice(&scratch.sorted);
     let mut start = 0;
     for i in 1..=n {
         if i == n || keyed[i].0 != keyed[start].0 {
@@ -342,7 +360,7 @@ impl Solver {
             self.clear_touched();
             let mut group = std::mem::take(&mut self.group);
             let mut ranges = std::mem::take(&mut self.ranges);
-            sort_into_components(&mut group, &mut ranges);
+            sort_into_components(&mut group, &mut ranges, &mut self.components);
             for range in ranges.iter().cloned() {
                 let component = &group[range];
                 if events >= budget {

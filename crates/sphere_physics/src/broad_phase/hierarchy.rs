@@ -142,7 +142,15 @@ impl Hierarchy {
         self.level_extents.resize(LEVELS, 0.0);
         self.overlay_level_counts.clear();
         self.overlay_level_counts.resize(LEVELS, 0);
+        // Room for the most buckets any number held could ask for (twice all bodies), so a
+        // step with more stragglers than the last allocates nothing.
+        let mut most = 8usize;
+        while most < 2 * n {
+            most *= 8;
+        }
+        let most = most.max(buckets);
         self.start.clear();
+        self.start.reserve(most + 1);
         self.start.resize(buckets + 1, 0);
         self.members.resize_with(LEVELS, Vec::new);
         self.members.iter_mut().for_each(Vec::clear);
@@ -165,12 +173,16 @@ impl Hierarchy {
         for b in 0..buckets {
             self.start[b + 1] += self.start[b];
         }
+        // Sized for every body, so a step with more stragglers than the last allocates nothing.
         let m = n - held;
         self.order.clear();
+        self.order.reserve(n);
         self.order.resize(m, 0);
         self.sorted_keys.clear();
+        self.sorted_keys.reserve(n);
         self.sorted_keys.resize(m, CellKey::default());
         self.sorted_boxes.clear();
+        self.sorted_boxes.reserve(n);
         self.sorted_boxes.resize(m, Aabb::default());
         // Place bodies; `start[b]` ends as the end of bucket b - 1's range, so shift back after.
         for (i, placed) in boxes.iter().enumerate().skip(held) {
@@ -189,6 +201,7 @@ impl Hierarchy {
         self.start[0] = 0;
 
         self.overlay_heads.clear();
+        self.overlay_heads.reserve(most);
         self.overlay_heads.resize(buckets, NONE);
     }
 

@@ -1,0 +1,81 @@
+//! Once warmed up, a step allocates nothing: a counting allocator watches steps of a shower
+//! piling onto a dome (resting contacts, simultaneous groups, bodies leaving the grid) and of a
+//! gas in a box of wall spheres.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use sphere_physics::{SceneDesc, World};
+
+/// Counts allocations made while `COUNTING` is set.
+struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: forwards every call to the system allocator unchanged; only counts.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: the caller's contract is passed on.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: the caller's contract is passed on.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: the caller's contract is passed on.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by `steps` steps of `world` after `warm` steps.
+fn allocations(world: &mut World, warm: u32, steps: u32) -> usize {
+    for _ in 0..warm {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    ALLOCATIONS.store(0, Ordering::Relaxed);
+    COUNTING.store(true, Ordering::Relaxed);
+    for _ in 0..steps {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    COUNTING.store(false, Ordering::Relaxed);
+    ALLOCATIONS.load(Ordering::Relaxed)
+}
+
+// One test, so no other test's allocations are counted.
+#[test]
+fn a_warmed_up_step_allocates_nothing() {
+    let shower = SceneDesc::from_ron(
+        r#"(name: "shower", gravity: (0.0, -9.81, 0.0), restitution: 0.5,
+            spheres: [(name: "dome", position: (0.0, 0.0, 0.0), radius: 1.0, fixed: true)],
+            generate: [Shower(count: 1500, seed: 7, min: (-0.8, 1.2, -0.8), max: (0.8, 2.4, 0.8),
+                              radius: 0.04)])"#,
+    )
+    .unwrap();
+    let mut world = shower.build().unwrap();
+    // Warm up through the landing, then watch the pile.
+    let shower_allocations = allocations(&mut world, 60, 30);
+    assert!(
+        world.stats().resting_contacts > 0,
+        "the pile rests on the dome"
+    );
+    let gas = SceneDesc::from_ron(
+        r#"(name: "gas", generate: [
+            Gas(count: 1500, seed: 3, min: (-1.0, -1.0, -1.0), max: (1.0, 1.0, 1.0), radius: 0.04,
+                speed: 2.0)])"#,
+    )
+    .unwrap();
+    let mut world = gas.build().unwrap();
+    let gas_allocations = allocations(&mut world, 30, 30);
+    assert_eq!((shower_allocations, gas_allocations), (0, 0));
+}

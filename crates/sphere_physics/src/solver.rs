@@ -227,8 +227,12 @@ const RESTING_SWEEPS: u32 = 64;
 /// What the solver needs to know besides the bodies.
 pub(crate) struct StepContext<'a> {
     pub settings: &'a Settings,
-    pub integrator: &'a dyn Integrator,
-    pub toi: &'a dyn TimeOfImpact,
+    /// A custom integrator, or `None` for the settings' (called directly, not through a
+    /// vtable: it runs once per body per step).
+    pub integrator: Option<&'a dyn Integrator>,
+    /// A custom time-of-impact method, or `None` for the settings' (called directly: it runs
+    /// for every pair tested).
+    pub toi: Option<&'a dyn TimeOfImpact>,
     pub dt: f64,
     pub start_time: f64,
 }
@@ -254,7 +258,10 @@ impl Solver {
                 dynamic += 1;
                 let a = settings.gravity + body.force() * body.inverse_mass();
                 largest_acceleration = largest_acceleration.max(a.length());
-                let k = ctx.integrator.kicks(body.velocity(), a, dt);
+                let k = match ctx.integrator {
+                    Some(custom) => custom.kicks(body.velocity(), a, dt),
+                    None => settings.integrator.kicks(body.velocity(), a, dt),
+                };
                 (a, (k.before, k.after))
             };
             let tether = body.tether();
@@ -827,13 +834,22 @@ impl Solver {
                 }
             }
         }
-        let outcome = ctx.toi.time_of_impact(
-            d,
-            w,
-            si.radius + sj.radius,
-            ctx.dt - t,
-            ctx.settings.tolerance,
-        );
+        let outcome = match ctx.toi {
+            Some(custom) => custom.time_of_impact(
+                d,
+                w,
+                si.radius + sj.radius,
+                ctx.dt - t,
+                ctx.settings.tolerance,
+            ),
+            None => ctx.settings.method.time_of_impact(
+                d,
+                w,
+                si.radius + sj.radius,
+                ctx.dt - t,
+                ctx.settings.tolerance,
+            ),
+        };
         stats.toi_tests += 1;
         stats.toi_iterations += u64::from(outcome.iterations);
         if let Some(toi) = outcome.time {

@@ -285,11 +285,8 @@ impl World {
         for k in 0..substeps {
             let ctx = StepContext {
                 settings: &self.settings,
-                integrator: self
-                    .integrator
-                    .as_deref()
-                    .unwrap_or(&self.settings.integrator),
-                toi: self.toi.as_deref().unwrap_or(&self.settings.method),
+                integrator: self.integrator.as_deref(),
+                toi: self.toi.as_deref(),
                 dt: sub_dt,
                 start_time: self.time + f64::from(k) * sub_dt,
             };

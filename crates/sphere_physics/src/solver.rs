@@ -505,7 +505,7 @@ impl Solver {
         }
         let d = sj.position - si.position;
         let reach = si.radius + sj.radius;
-        let band = reach * 1e-6 + settings.tolerance.epsilon() * (1.0 + reach);
+        let band = contact_band(reach, settings);
         let distance_squared = d.length_squared();
         if distance_squared > (reach + band) * (reach + band) || distance_squared == 0.0 {
             return false;
@@ -903,7 +903,7 @@ impl Solver {
             // began to: stopping the pair dead here would cancel that and let a pressed pile
             // sink a little every step.
             let reach = sa.radius + sb.radius;
-            let band = reach * 1e-6 + ctx.settings.tolerance.epsilon() * (1.0 + reach);
+            let band = contact_band(reach, ctx.settings);
             let press = pressing(self.extra(a), self.extra(b), normal);
             let bias = self.correction(reach - distance, band, press, ctx);
             if bias > 0.0 {
@@ -959,6 +959,12 @@ impl Solver {
         });
         worst
     }
+}
+
+/// How far apart two spheres with radii summing to `reach` may be and still touch: a millionth
+/// of the reach, plus the contact tolerance.
+fn contact_band(reach: f64, settings: &Settings) -> f64 {
+    reach * 1e-6 + settings.tolerance.epsilon() * (1.0 + reach)
 }
 
 /// Hints that `value` will be read soon (a no-op where there is no such instruction).

@@ -83,15 +83,15 @@ impl Grid {
 
     /// Lays the grid out over the block `origin`, `dims` for bodies `0..cells.len()`, already
     /// sorted by the dense index of their cells (`cells` are theirs, in that order) as
-    /// [`Grid::set_start`] says.
-    pub fn layout(&mut self, origin: Cell, dims: [usize; 3], cells: &[Cell]) {
+    /// [`Grid::set_start`] says. Takes the cells' buffer (leaving the grid's old one, to be
+    /// refilled next step) rather than copying it.
+    pub fn layout(&mut self, origin: Cell, dims: [usize; 3], cells: &mut Vec<Cell>) {
         self.origin = origin;
         self.dims = dims;
         self.len = cells.len();
-        self.cells.clear();
-        self.cells.extend_from_slice(cells);
+        std::mem::swap(&mut self.cells, cells);
         self.present.clear();
-        self.present.resize(cells.len(), true);
+        self.present.resize(self.len, true);
     }
 
     /// Bodies `0..len()` are (or were, at the start of the step) the grid's.

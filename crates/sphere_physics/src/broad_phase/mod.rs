@@ -225,9 +225,9 @@ impl BroadPhase {
         if self.brute {
             return;
         }
-        self.grid.layout(self.origin, self.dims, &self.sorted_cells);
-        self.hierarchy
-            .rebuild(boxes, self.sorted_cells.len(), self.base);
+        self.grid
+            .layout(self.origin, self.dims, &mut self.sorted_cells);
+        self.hierarchy.rebuild(boxes, self.grid.len(), self.base);
     }
 
     /// Body `i`'s box is now `b`.

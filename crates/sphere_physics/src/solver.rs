@@ -386,6 +386,11 @@ impl Solver {
             }
             self.group = group;
             self.ranges = ranges;
+            // Ask for the next event's bodies now: events come in time order, so their bodies
+            // lie anywhere in memory, and their loads overlap this event's re-queries.
+            if let Some(next) = self.queue.peek() {
+                self.prefetch_event(&next);
+            }
             self.requery_touched(event.time, ctx, stats);
         }
 
@@ -460,6 +465,17 @@ impl Solver {
             }
         }
         self.candidates = candidates;
+    }
+
+    /// Hints that `event`'s bodies (their versions, drifts, boxes and extras) will be read.
+    fn prefetch_event(&self, event: &Event) {
+        for k in [event.a as usize, event.b as usize] {
+            prefetch(&self.versions[k]);
+            prefetch_lines(&self.segments[k]);
+            prefetch(&self.boxes[k]);
+            prefetch(&self.extras[self.order[k] as usize]);
+            self.broad.prefetch(k);
+        }
     }
 
     fn is_touched(&self, m: usize) -> bool {
@@ -969,7 +985,7 @@ fn contact_band(reach: f64, settings: &Settings) -> f64 {
 
 /// Hints that `value` will be read soon (a no-op where there is no such instruction).
 #[inline(always)]
-fn prefetch<T>(value: &T) {
+pub(crate) fn prefetch<T>(value: &T) {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: a prefetch reads nothing and cannot fault; the pointer comes from a reference.
     unsafe {
@@ -978,6 +994,15 @@ fn prefetch<T>(value: &T) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = value;
+}
+
+/// [`prefetch`] for both ends of `value` (which spans at most two cache lines).
+#[inline(always)]
+fn prefetch_lines<T>(value: &T) {
+    prefetch(value);
+    let last = size_of::<T>().saturating_sub(1);
+    // SAFETY: the value's own last byte.
+    prefetch(unsafe { &*(value as *const T).cast::<u8>().add(last) });
 }
 
 /// The acceleration pressing a pair together along `normal` (from `a` to `b`): the larger

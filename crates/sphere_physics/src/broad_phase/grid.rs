@@ -105,6 +105,14 @@ impl Grid {
         i < self.len && self.present[i]
     }
 
+    /// Hints that body `i`'s cell will be read soon.
+    #[inline]
+    pub fn prefetch(&self, i: usize) {
+        if let Some(k) = self.cells.get(i) {
+            crate::solver::prefetch(k);
+        }
+    }
+
     /// Body `i`'s box is now `b`: it stays if the box is within its cell's envelope, and
     /// otherwise leaves the grid (returns false).
     pub fn keep(&mut self, i: usize, b: &Aabb) -> bool {

@@ -261,6 +261,14 @@ impl BroadPhase {
         }
     }
 
+    /// Hints that body `i` will be updated and queried soon.
+    #[inline]
+    pub fn prefetch(&self, i: usize) {
+        if !self.brute {
+            self.grid.prefetch(i);
+        }
+    }
+
     /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s (`boxes` current).
     pub fn overlapping(&self, i: usize, boxes: &[Aabb], mut f: impl FnMut(usize)) {
         let bi = &boxes[i];

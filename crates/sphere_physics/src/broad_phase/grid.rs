@@ -8,9 +8,48 @@
 //! new box is still within the envelope (most do: the new box is the rest of the old drift,
 //! turned); otherwise it leaves the grid for the broad phase's general tier.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3A};
 
 use super::Aabb;
+
+/// A box in single precision, rounded outwards so it holds the box it was made from: the grid's
+/// scans read half the bytes, and a superset of the overlapping pairs is all they must find.
+#[derive(Clone, Copy, Debug)]
+struct Coarse {
+    lo: Vec3A,
+    hi: Vec3A,
+}
+
+impl Coarse {
+    /// Overlaps nothing: the box of a body that left the grid.
+    const EMPTY: Coarse = Coarse {
+        lo: Vec3A::INFINITY,
+        hi: Vec3A::NEG_INFINITY,
+    };
+
+    /// The box holding `b`: each corner rounded to single precision, then moved outwards by
+    /// four times the rounding's largest error (plus a hair, for values near zero). Branch-free:
+    /// which way a value rounds is a coin toss, and branching on it cost more than the scan.
+    #[inline]
+    fn around(b: &Aabb) -> Self {
+        let limit = DVec3::splat(f64::from(f32::MAX));
+        let single = |v: DVec3| Vec3A::from(v.clamp(-limit, limit).as_vec3());
+        // Rounding to nearest errs by at most |v|·2⁻²⁴; 2⁻²² covers it and the rounding of
+        // the subtraction itself.
+        let pad = |v: Vec3A| v.abs() * (1.0 / 4_194_304.0) + 1e-30;
+        let (lo, hi) = (single(b.lo), single(b.hi));
+        Coarse {
+            lo: lo - pad(lo),
+            hi: hi + pad(hi),
+        }
+    }
+
+    /// Whether the boxes meet (touching counts); branch-free.
+    #[inline]
+    fn overlaps(&self, other: &Coarse) -> bool {
+        (self.lo.cmple(other.hi) & other.lo.cmple(self.hi)).all()
+    }
+}
 
 /// A cell's coordinates, absolute (cell `k` spans `[k·cell, (k+1)·cell)` on its axis).
 pub(crate) type Cell = [i32; 3];
@@ -32,6 +71,8 @@ pub(crate) struct Grid {
     start: Vec<u32>,
     /// Each grid body's cell.
     cells: Vec<Cell>,
+    /// Each grid body's box, rounded outwards ([`Coarse::EMPTY`] once it has left).
+    boxes: Vec<Coarse>,
     /// Whether grid body `i` is still in the grid (it leaves when its box leaves its envelope).
     present: Vec<bool>,
 }
@@ -83,15 +124,24 @@ impl Grid {
 
     /// Lays the grid out over the block `origin`, `dims` for bodies `0..cells.len()`, already
     /// sorted by the dense index of their cells (`cells` are theirs, in that order) as
-    /// [`Grid::set_start`] says. Takes the cells' buffer (leaving the grid's old one, to be
-    /// refilled next step) rather than copying it.
-    pub fn layout(&mut self, origin: Cell, dims: [usize; 3], cells: &mut Vec<Cell>) {
+    /// [`Grid::set_start`] says, with `boxes` (at least as many). Takes the cells' buffer
+    /// (leaving the grid's old one, to be refilled next step) rather than copying it.
+    pub fn layout(
+        &mut self,
+        origin: Cell,
+        dims: [usize; 3],
+        cells: &mut Vec<Cell>,
+        boxes: &[Aabb],
+    ) {
         self.origin = origin;
         self.dims = dims;
         self.len = cells.len();
         std::mem::swap(&mut self.cells, cells);
         self.present.clear();
         self.present.resize(self.len, true);
+        self.boxes.clear();
+        self.boxes
+            .extend(boxes[..self.len].iter().map(Coarse::around));
     }
 
     /// Bodies `0..len()` are (or were, at the start of the step) the grid's.
@@ -117,16 +167,19 @@ impl Grid {
     /// otherwise leaves the grid (returns false).
     pub fn keep(&mut self, i: usize, b: &Aabb) -> bool {
         if self.within(b, self.cells[i]) {
+            self.boxes[i] = Coarse::around(b);
             return true;
         }
         self.present[i] = false;
+        self.boxes[i] = Coarse::EMPTY;
         false
     }
 
     /// Calls `f(i, j)` with `i < j` for every pair of grid bodies whose boxes overlap, each
     /// pair once: a cell with itself and its 13 neighbours that follow it, body by body (empty
     /// cells cost nothing). Call right after [`Grid::layout`].
-    pub fn pairs(&self, boxes: &[Aabb], f: &mut impl FnMut(usize, usize)) {
+    pub fn pairs(&self, f: &mut impl FnMut(usize, usize)) {
+        let boxes = &self.boxes[..];
         let [nx, ny, nz] = self.dims;
         let start = &self.start;
         for i in 0..self.len {
@@ -156,32 +209,24 @@ impl Grid {
         }
     }
 
-    /// Calls `f(j)` for every body `j` in `from..to` still in the grid whose box overlaps `q`.
+    /// Calls `f(j)` for every body `j` in `from..to` still in the grid whose box overlaps `q`
+    /// (bodies that left have empty boxes).
     #[inline]
-    fn visit_in(
-        &self,
-        q: &Aabb,
-        boxes: &[Aabb],
-        from: usize,
-        to: usize,
-        f: &mut impl FnMut(usize),
-    ) {
-        for ((offset, bj), &present) in boxes[from..to]
-            .iter()
-            .enumerate()
-            .zip(&self.present[from..to])
-        {
-            if bj.overlaps(q) & present {
+    fn visit_in(&self, q: &Coarse, from: usize, to: usize, f: &mut impl FnMut(usize)) {
+        for (offset, bj) in self.boxes[from..to].iter().enumerate() {
+            if bj.overlaps(q) {
                 f(from + offset);
             }
         }
     }
 
-    /// Calls `f(j)` for every body `j` in the grid whose box overlaps `q`.
-    pub fn visit(&self, q: &Aabb, boxes: &[Aabb], f: &mut impl FnMut(usize)) {
+    /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the
+    /// grid compares boxes rounded outwards to single precision).
+    pub fn visit(&self, q: &Aabb, f: &mut impl FnMut(usize)) {
         if self.len == 0 {
             return;
         }
+        let coarse = Coarse::around(q);
         // Cell k's envelope [k·cell − slack, (k+1)·cell + slack] overlaps [lo, hi] when
         // (lo − slack)/cell − 1 <= k <= (hi + slack)/cell; padded against rounding.
         let mut range = [(0usize, 0usize); 3];
@@ -201,7 +246,7 @@ impl Grid {
         }
         if cells > self.len {
             // A box over much of the grid: every body is cheaper than every cell.
-            self.visit_in(q, boxes, 0, self.len, f);
+            self.visit_in(&coarse, 0, self.len, f);
             return;
         }
         let [nx, ny, _] = self.dims;
@@ -217,7 +262,7 @@ impl Grid {
                     self.start[row] as usize,
                     self.start[row + (xh - xl) + 1] as usize,
                 );
-                self.visit_in(q, boxes, s, e, f);
+                self.visit_in(&coarse, s, e, f);
             }
         }
     }
@@ -226,9 +271,9 @@ impl Grid {
 /// Calls `f(i, j)` for every body `j` in `from..to` whose box overlaps `bi` (body `i`'s).
 #[inline]
 fn pairs_in(
-    bi: &Aabb,
+    bi: &Coarse,
     i: usize,
-    boxes: &[Aabb],
+    boxes: &[Coarse],
     from: usize,
     to: usize,
     f: &mut impl FnMut(usize, usize),

@@ -226,7 +226,7 @@ impl BroadPhase {
             return;
         }
         self.grid
-            .layout(self.origin, self.dims, &mut self.sorted_cells);
+            .layout(self.origin, self.dims, &mut self.sorted_cells, boxes);
         self.hierarchy.rebuild(boxes, self.grid.len(), self.base);
     }
 
@@ -254,10 +254,10 @@ impl BroadPhase {
             }
             return;
         }
-        self.grid.pairs(boxes, &mut f);
+        self.grid.pairs(&mut f);
         self.hierarchy.pairs(boxes, &mut f);
         for (j, bj) in boxes.iter().enumerate().skip(self.grid.len()) {
-            self.grid.visit(bj, boxes, &mut |i| f(i, j));
+            self.grid.visit(bj, &mut |i| f(i, j));
         }
     }
 
@@ -280,7 +280,7 @@ impl BroadPhase {
             }
             return;
         }
-        self.grid.visit(bi, boxes, &mut |j| {
+        self.grid.visit(bi, &mut |j| {
             if j != i {
                 f(j);
             }

@@ -1,0 +1,55 @@
+//! The broad phase's grid compares boxes in single precision, rounded outwards. Far from the
+//! origin a single-precision step (0.008 at 1e5) is a sixth of these spheres' radius: a gas
+//! there must still find every collision, keep its energy and leave no overlap.
+
+use sphere_physics::SceneDesc;
+
+fn gas_at(offset: [f64; 3]) -> SceneDesc {
+    let [x, y, z] = offset;
+    SceneDesc::from_ron(&format!(
+        "(name: \"far gas\", generate: [
+            Gas(count: 600, seed: 5, min: ({:?}, {:?}, {:?}), max: ({:?}, {:?}, {:?}),
+                radius: 0.05, speed: 3.0),
+        ])",
+        x - 1.5,
+        y - 1.5,
+        z - 1.5,
+        x + 1.5,
+        y + 1.5,
+        z + 1.5,
+    ))
+    .unwrap()
+}
+
+#[test]
+fn a_gas_far_from_the_origin_misses_no_collision() {
+    for offset in [[0.0; 3], [1.0e5, -2.0e5, 3.0e5], [-7.0e5, 4.0e5, 1.0e6]] {
+        let mut world = gas_at(offset).build().unwrap();
+        let energy = world.kinetic_energy();
+        let mut collisions = 0;
+        for _ in 0..120 {
+            let stats = *world.step(1.0 / 60.0).unwrap();
+            collisions += stats.collisions;
+            assert!(
+                stats.max_overlap <= 1e-9,
+                "at {offset:?}: overlap {}",
+                stats.max_overlap
+            );
+            assert_eq!(stats.collisions_deferred, 0);
+        }
+        assert!(collisions > 500, "at {offset:?}: {collisions} collisions");
+        let drift = (world.kinetic_energy() - energy).abs() / energy;
+        assert!(drift <= 1e-10, "at {offset:?}: energy drift {drift}");
+        // Inside its walls (1e4-radius spheres, flat to about 1.1e-4 over the box).
+        for body in world.bodies().iter().filter(|b| !b.is_fixed()) {
+            for (a, centre) in offset.iter().enumerate() {
+                let reach = 1.5 - body.radius() + 2e-4;
+                assert!(
+                    (body.position()[a] - centre).abs() <= reach,
+                    "at {offset:?}: {:?}",
+                    body.position()
+                );
+            }
+        }
+    }
+}

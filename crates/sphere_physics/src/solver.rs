@@ -1104,7 +1104,11 @@ fn overlap(a: &Body, b: &Body) -> f64 {
 
 /// Whether fixed sphere `fixed`, grown by the contact margin, meets the box `other` sweeps
 /// over the rest of the step (a wall or a dome reaches only a small part of its own box).
+/// A fixed sphere with a velocity (kinematic) sweeps a capsule, not a ball: always true.
 fn ball_meets_box(fixed: &Segment, other: &Segment, ctx: &StepContext<'_>) -> bool {
+    if fixed.velocity != DVec3::ZERO {
+        return true;
+    }
     let b = swept_box(other, ctx.dt, ctx.settings);
     let margin = ctx.settings.tolerance.epsilon() * (1.0 + 2.0 * fixed.radius);
     // A hair larger, so rounding never drops a touching pair.

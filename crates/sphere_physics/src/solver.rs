@@ -62,6 +62,28 @@ impl Segment {
     }
 }
 
+/// A pair whose impact gave no impulse (see `Solver::settled`): `a < b`, and their versions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Settled {
+    a: u32,
+    b: u32,
+    version_a: u32,
+    version_b: u32,
+}
+
+impl Settled {
+    /// Pair `(a, b)` (either order) as its bodies' `versions` stand now.
+    fn now(versions: &[u32], a: usize, b: usize) -> Self {
+        let (a, b) = (a.min(b), a.max(b));
+        Settled {
+            a: a as u32,
+            b: b as u32,
+            version_a: versions[a],
+            version_b: versions[b],
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug)]
 struct Event {
     time: f64,
@@ -140,6 +162,13 @@ pub(crate) struct Solver {
     touched_flags: Vec<u32>,
     touched_epoch: u32,
     pub collisions: Vec<Collision>,
+    /// Pairs whose impact at `settled_time` gave no impulse, with both bodies' versions after
+    /// it: at that instant they do not approach, though a string's bent drift may say they do
+    /// (it is a chord; at an impact a sphere moves freely or along its swing). A new impact of
+    /// theirs at that same instant, neither body having changed since, is not queued: it would
+    /// give no impulse again, for ever.
+    settled: Vec<Settled>,
+    settled_time: f64,
     /// Scratch for simultaneous groups.
     group: Vec<Event>,
     ranges: Vec<std::ops::Range<usize>>,
@@ -244,6 +273,8 @@ impl Solver {
         let dt = ctx.dt;
         let settings = ctx.settings;
         self.tested.clear();
+        self.settled.clear();
+        self.settled_time = f64::NAN;
         self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
         self.extras.clear();
@@ -365,6 +396,10 @@ impl Solver {
                 }
             }
             self.clear_touched();
+            if event.time != self.settled_time {
+                self.settled.clear();
+                self.settled_time = event.time;
+            }
             let mut group = std::mem::take(&mut self.group);
             let mut ranges = std::mem::take(&mut self.ranges);
             sort_into_components(&mut group, &mut ranges, &mut self.components);
@@ -798,6 +833,9 @@ impl Solver {
             );
             stats.collisions += 1;
             stats.resting_contacts += u32::from(resting);
+            if impulse <= 0.0 {
+                self.settled.push(Settled::now(&self.versions, a, b));
+            }
             let sa = &self.segments[a];
             self.collisions.push(collision(
                 self.extra(a).id,
@@ -869,8 +907,15 @@ impl Solver {
         stats.toi_tests += 1;
         stats.toi_iterations += u64::from(outcome.iterations);
         if let Some(toi) = outcome.time {
+            let time = (t + toi).min(ctx.dt);
+            if time == self.settled_time
+                && !self.settled.is_empty()
+                && self.settled.contains(&Settled::now(&self.versions, i, j))
+            {
+                return;
+            }
             self.queue.push(Event {
-                time: (t + toi).min(ctx.dt),
+                time,
                 a: i as u32,
                 b: j as u32,
                 version_a: self.versions[i],
@@ -931,6 +976,9 @@ impl Solver {
         }
         self.set_velocity(a, r.velocity_a, t, ctx);
         self.set_velocity(b, r.velocity_b, t, ctx);
+        if r.impulse <= 0.0 {
+            self.settled.push(Settled::now(&self.versions, a, b));
+        }
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);
         self.collisions.push(collision(

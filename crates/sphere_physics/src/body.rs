@@ -188,9 +188,10 @@ impl SphereDesc {
                 ));
             }
         }
-        let volume = 4.0 / 3.0 * PI * self.radius.powi(3);
-        let mass = self.density * volume;
-        let mass_ok = mass.is_finite() && mass > 0.0;
+        // Exactly as `Body::new` computes them: both must be finite and > 0.
+        let mass = self.density * 4.0 / 3.0 * PI * self.radius.powi(3);
+        let inverse = 1.0 / mass;
+        let mass_ok = mass.is_finite() && mass > 0.0 && inverse.is_finite() && inverse > 0.0;
         if !(self.fixed || mass_ok) {
             return Err(err(
                 Field::Density,

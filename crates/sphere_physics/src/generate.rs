@@ -150,10 +150,15 @@ struct Lattice {
 }
 
 impl Lattice {
-    /// Cells of side `2 · radius · 1.1`, as many as fit in `min..max`.
+    /// Cells of side `2 · radius · 1.1`, as many as fit in `min..max`, up to 2²¹ per axis (so
+    /// that their number fits in a `u64`: a box that holds more uses only its lower corner).
     fn new(min: [f64; 3], max: [f64; 3], radius: f64) -> Self {
         let cell = 2.0 * radius * 1.1;
-        let counts = std::array::from_fn(|k| ((max[k] - min[k]) / cell).floor().max(0.0) as u64);
+        let counts = std::array::from_fn(|k| {
+            ((max[k] - min[k]) / cell)
+                .floor()
+                .clamp(0.0, f64::from(1u32 << 21)) as u64
+        });
         Self { min, cell, counts }
     }
 

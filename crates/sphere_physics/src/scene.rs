@@ -203,18 +203,27 @@ impl SceneDesc {
                 reason: "must be in [0, 1]",
             });
         }
-        if let Some(dt) = self.dt.filter(|dt| !(dt.is_finite() && *dt > 0.0)) {
+        if let Some(dt) = self.dt.filter(|dt| !(dt.is_normal() && *dt > 0.0)) {
             return Err(SceneError::Setting {
                 field: "dt",
                 value: dt,
-                reason: "must be finite and > 0",
+                reason: "must be finite, normal and > 0",
             });
         }
-        if self.substeps == Some(0) {
+        if let Some(substeps) = self.substeps.filter(|&s| s == 0 || s > crate::MAX_SUBSTEPS) {
             return Err(SceneError::Setting {
                 field: "substeps",
-                value: 0.0,
-                reason: "must be at least 1",
+                value: f64::from(substeps),
+                reason: "must be from 1 to 65536",
+            });
+        }
+        if let Some(ToiMethod::Bisection { max_iterations }) = self.method
+            && max_iterations > crate::MAX_BISECTION_ITERATIONS
+        {
+            return Err(SceneError::Setting {
+                field: "method",
+                value: f64::from(max_iterations),
+                reason: "bisection iterations must be at most 64",
             });
         }
         Ok(Settings {

@@ -66,7 +66,64 @@ impl Default for Settings {
     }
 }
 
+/// The most substeps a step may be split into.
+pub const MAX_SUBSTEPS: u32 = 65_536;
+
+/// The most bisection iterations: after 64 halvings an f64 interval cannot shrink further.
+pub const MAX_BISECTION_ITERATIONS: u32 = 64;
+
 impl Settings {
+    /// Checks every field (the fields are public, and settings also come from files): gravity
+    /// finite, tolerance finite in `[0, 0.5)`, `resting_factor` finite and `>= 0`,
+    /// `creep_fraction` in `[0, 1]`, `substeps` at most [`MAX_SUBSTEPS`],
+    /// `max_collisions_per_body` at least 1, and bisection at most [`MAX_BISECTION_ITERATIONS`]
+    /// iterations. [`World::step`] checks them first and changes nothing if one is wrong.
+    pub fn validate(&self) -> Result<(), WorldError> {
+        let bad = |field, value: String, reason| {
+            Err(WorldError::InvalidSetting {
+                field,
+                value,
+                reason,
+            })
+        };
+        if !self.gravity.is_finite() {
+            return bad("gravity", format!("{}", self.gravity), "must be finite");
+        }
+        let eps = self.tolerance.epsilon();
+        if !(eps.is_finite() && (0.0..0.5).contains(&eps)) {
+            return bad(
+                "tolerance",
+                format!("{eps}"),
+                "must be finite and in [0, 0.5)",
+            );
+        }
+        if !(self.resting_factor.is_finite() && self.resting_factor >= 0.0) {
+            let value = format!("{}", self.resting_factor);
+            return bad("resting_factor", value, "must be finite and >= 0");
+        }
+        if !(0.0..=1.0).contains(&self.creep_fraction) {
+            let value = format!("{}", self.creep_fraction);
+            return bad("creep_fraction", value, "must be in [0, 1]");
+        }
+        if self.substeps > MAX_SUBSTEPS {
+            let value = format!("{}", self.substeps);
+            return bad("substeps", value, "must be at most 65536");
+        }
+        if self.max_collisions_per_body == 0 {
+            return bad("max_collisions_per_body", "0".into(), "must be at least 1");
+        }
+        if let ToiMethod::Bisection { max_iterations } = self.method
+            && max_iterations > MAX_BISECTION_ITERATIONS
+        {
+            return bad(
+                "method",
+                format!("{max_iterations}"),
+                "bisection iterations must be at most 64",
+            );
+        }
+        Ok(())
+    }
+
     /// Settings with the given gravity, defaults otherwise.
     pub fn with_gravity(gravity: DVec3) -> Self {
         Settings {
@@ -91,9 +148,19 @@ pub enum WorldError {
     /// No body has this id (never added, or removed).
     #[error("no body {0}")]
     UnknownBody(BodyId),
-    /// The time step is not finite and > 0.
-    #[error("time step must be finite and > 0, got {0}")]
+    /// The time step is not finite and > 0 (or is subnormal: dividing by it overflows).
+    #[error("time step must be finite, normal and > 0, got {0}")]
     InvalidTimeStep(f64),
+    /// A field of [`Settings`] is invalid (see [`Settings::validate`]).
+    #[error("settings: {field} {reason}, got {value}")]
+    InvalidSetting {
+        /// The offending field of [`Settings`].
+        field: &'static str,
+        /// The offending value, as text.
+        value: String,
+        /// What the value must be.
+        reason: &'static str,
+    },
 }
 
 /// A world of spheres.
@@ -270,11 +337,13 @@ impl World {
         &self.solver.collisions
     }
 
-    /// Advances the world by `dt`. On an invalid `dt` nothing changes.
+    /// Advances the world by `dt`. On an invalid `dt` or invalid settings (see
+    /// [`Settings::validate`]) nothing changes.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
-        if !(dt.is_finite() && dt > 0.0) {
+        if !(dt.is_normal() && dt > 0.0) {
             return Err(WorldError::InvalidTimeStep(dt));
         }
+        self.settings.validate()?;
         let mut stats = StepStats {
             dt,
             ..Default::default()

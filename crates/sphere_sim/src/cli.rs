@@ -85,7 +85,7 @@ fn usage(message: impl Into<String>) -> UsageError {
 }
 
 /// The most bisection iterations accepted: past 64 halvings of a step nothing changes in f64.
-pub const MAX_BISECTION_ITERATIONS: u32 = 64;
+pub use sphere_physics::MAX_BISECTION_ITERATIONS;
 
 /// Parses a method name: `exact`, `bisection` (8 iterations) or `bisection:N`.
 pub fn parse_method(text: &str) -> Result<ToiMethod, UsageError> {

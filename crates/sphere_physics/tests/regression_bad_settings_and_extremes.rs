@@ -1,0 +1,112 @@
+//! Bad input never panics, hangs or poisons the state: settings are checked at every step
+//! (their fields are public), a subnormal time step is refused, a density or radius whose mass
+//! (or its inverse) overflows is refused when the sphere is added, and a generator's box far
+//! larger than its spheres neither overflows nor panics. Found by a review; each case used to
+//! return Ok and leave NaN behind, hang, or panic on an overflow.
+
+use sphere_physics::generate::Generator;
+use sphere_physics::{Field, Settings, SphereDesc, ToiMethod, World, WorldError, glam::DVec3};
+
+fn world_on_a_dome() -> World {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world.add_sphere(SphereDesc::new(1.0).fixed()).unwrap();
+    world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.0, 1.5, 0.0)))
+        .unwrap();
+    world
+}
+
+fn refused(change: impl Fn(&mut Settings), field: &str) {
+    let mut world = world_on_a_dome();
+    let before: Vec<_> = world.bodies().to_vec();
+    change(world.settings_mut());
+    match world.step(1.0 / 60.0) {
+        Err(WorldError::InvalidSetting { field: f, .. }) => assert_eq!(f, field),
+        other => panic!("{field}: expected an invalid setting, got {other:?}"),
+    }
+    assert_eq!(world.bodies(), &before[..], "{field}: the state changed");
+    assert_eq!(world.steps(), 0);
+}
+
+#[test]
+fn regression_invalid_settings_are_typed_errors_and_change_nothing() {
+    refused(|s| s.gravity = DVec3::new(0.0, f64::NAN, 0.0), "gravity");
+    refused(
+        |s| s.gravity = DVec3::new(f64::INFINITY, 0.0, 0.0),
+        "gravity",
+    );
+    refused(|s| s.creep_fraction = f64::NEG_INFINITY, "creep_fraction");
+    refused(|s| s.creep_fraction = 2.0, "creep_fraction");
+    refused(|s| s.resting_factor = f64::NAN, "resting_factor");
+    refused(|s| s.resting_factor = -1.0, "resting_factor");
+    refused(|s| s.max_collisions_per_body = 0, "max_collisions_per_body");
+    // These two used to run for hours.
+    refused(|s| s.substeps = u32::MAX, "substeps");
+    refused(
+        |s| {
+            s.method = ToiMethod::Bisection {
+                max_iterations: u32::MAX,
+            }
+        },
+        "method",
+    );
+    // And the defaults step.
+    let mut world = world_on_a_dome();
+    world.step(1.0 / 60.0).unwrap();
+}
+
+#[test]
+fn regression_a_subnormal_time_step_is_refused() {
+    let mut world = world_on_a_dome();
+    for dt in [1e-310, f64::MIN_POSITIVE / 2.0, 0.0, -0.0] {
+        assert_eq!(world.step(dt).err(), Some(WorldError::InvalidTimeStep(dt)));
+    }
+    // The smallest normal step is taken, and leaves everything finite.
+    world.step(f64::MIN_POSITIVE).unwrap();
+    assert!(world.bodies().iter().all(|b| b.position().is_finite()));
+}
+
+#[test]
+fn regression_a_mass_that_overflows_is_refused() {
+    let mut world = World::new(Settings::default());
+    for desc in [
+        SphereDesc::new(1.0).with_density(1e-309),
+        SphereDesc::new(1.0).with_density(1e308),
+        SphereDesc::new(1e-103),
+        SphereDesc::new(1e103),
+    ] {
+        let error = world.add_sphere(desc.clone()).unwrap_err();
+        assert_eq!(error.field, Field::Density, "{desc:?}");
+    }
+    assert!(world.is_empty());
+    // Fixed spheres have no mass to overflow.
+    world
+        .add_sphere(SphereDesc::new(1e103).with_density(1e308).fixed())
+        .unwrap();
+}
+
+#[test]
+fn regression_a_huge_box_of_tiny_spheres_does_not_overflow() {
+    for (min, max, radius) in [
+        ([0.0; 3], [1000.0; 3], 1e-4),
+        ([-1e308; 3], [1e308; 3], 1.0),
+    ] {
+        let shower = Generator::Shower {
+            count: 10,
+            seed: 1,
+            min,
+            max,
+            radius,
+            velocity: [0.0; 3],
+            density: 1.0,
+            restitution: None,
+        };
+        let spheres = shower.spheres().unwrap();
+        assert_eq!(spheres.len(), 10);
+        for s in &spheres {
+            for k in 0..3 {
+                assert!(s.position[k] - radius >= min[k] && s.position[k] + radius <= max[k]);
+            }
+        }
+    }
+}

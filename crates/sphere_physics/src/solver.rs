@@ -268,8 +268,15 @@ pub(crate) struct StepContext<'a> {
 
 impl Solver {
     /// Advances `bodies` (all live, in id order) by `ctx.dt`, filling the collision counters,
-    /// energies and momentum of `stats`, and `self.collisions`.
-    pub fn step(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
+    /// energies and momentum of `stats`, and `self.collisions`. If a body's drift would leave
+    /// the finite range within the step (an absurd time step or speed), returns its index
+    /// before changing anything.
+    pub fn step(
+        &mut self,
+        bodies: &mut [Body],
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) -> Result<(), usize> {
         let dt = ctx.dt;
         let settings = ctx.settings;
         self.tested.clear();
@@ -282,7 +289,8 @@ impl Solver {
         let mut dynamic = 0u32;
         let mut largest_acceleration = 0.0f64;
         self.strings = false;
-        for body in bodies.iter() {
+        let mut overflow = None;
+        for (index, body) in bodies.iter().enumerate() {
             let (acceleration, kicks) = if body.is_fixed() {
                 (DVec3::ZERO, Default::default())
             } else {
@@ -310,6 +318,9 @@ impl Solver {
                 inverse_mass: body.inverse_mass(),
                 radius: body.radius(),
             };
+            if !(segment.position_at(dt).is_finite() && (velocity + kicks.1).is_finite()) {
+                overflow = overflow.or(Some(index));
+            }
             self.boxes.push(swept_box(&segment, dt, settings));
             self.segments.push(segment);
             self.extras.push(Extra {
@@ -324,6 +335,9 @@ impl Solver {
             });
         }
 
+        if let Some(index) = overflow {
+            return Err(index);
+        }
         self.resting_scale = if largest_acceleration > 0.0 {
             settings.resting_factor * dt
         } else {
@@ -471,6 +485,7 @@ impl Solver {
                 reach - (self.finals[j] - self.finals[i]).length()
             })
             .fold(0.0, f64::max);
+        Ok(())
     }
 
     /// Tests every pair involving a body in `touched` (all dynamic, all just changed) once,

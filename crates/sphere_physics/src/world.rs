@@ -338,7 +338,9 @@ impl World {
     }
 
     /// Advances the world by `dt`. On an invalid `dt` or invalid settings (see
-    /// [`Settings::validate`]) nothing changes.
+    /// [`Settings::validate`]) nothing changes. A sphere whose position or velocity would leave
+    /// the finite range within the step (an absurd `dt` or speed) is an error naming it; the
+    /// step stops before the substep that would overflow, so no state turns infinite or NaN.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
         if !(dt.is_normal() && dt > 0.0) {
             return Err(WorldError::InvalidTimeStep(dt));
@@ -359,7 +361,15 @@ impl World {
                 dt: sub_dt,
                 start_time: self.time + f64::from(k) * sub_dt,
             };
-            self.solver.step(&mut self.bodies, &ctx, &mut stats);
+            if let Err(index) = self.solver.step(&mut self.bodies, &ctx, &mut stats) {
+                let body = &self.bodies[index];
+                return Err(WorldError::Body(BodyError {
+                    body: label(body.desc.name.as_deref(), body.id),
+                    field: Field::Velocity,
+                    value: body.velocity().length(),
+                    reason: "would take the sphere beyond the finite range within this step",
+                }));
+            }
         }
         self.steps += 1;
         self.time += dt;

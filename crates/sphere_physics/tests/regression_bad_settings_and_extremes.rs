@@ -110,3 +110,32 @@ fn regression_a_huge_box_of_tiny_spheres_does_not_overflow() {
         }
     }
 }
+
+#[test]
+fn regression_a_step_that_would_overflow_is_refused() {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world
+        .add_sphere(SphereDesc::new(0.5).named("ball"))
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(5.0, 0.0, 0.0))
+                .moving(DVec3::new(1e300, 0.0, 0.0)),
+        )
+        .unwrap();
+    let before = world.bodies().to_vec();
+    // Gravity alone takes the first ball to -inf over 1e300 s; the second is past f64 in 1e9 s.
+    for (dt, culprit) in [(1e300, "'ball'"), (1e9, "#1")] {
+        match world.step(dt) {
+            Err(WorldError::Body(error)) => {
+                assert_eq!(error.field, Field::Velocity);
+                assert!(error.body.starts_with(culprit), "{error}");
+            }
+            other => panic!("dt {dt}: expected an error, got {other:?}"),
+        }
+        assert_eq!(world.bodies(), &before[..]);
+    }
+    world.step(1.0 / 60.0).unwrap();
+    assert!(world.bodies().iter().all(|b| b.position().is_finite()));
+}

@@ -188,8 +188,8 @@ impl SphereDesc {
                 ));
             }
         }
-        // Exactly as `Body::new` computes them: both must be finite and > 0.
-        let mass = self.density * 4.0 / 3.0 * PI * self.radius.powi(3);
+        // The mass `Body::new` will use, and its inverse: both must be finite and > 0.
+        let mass = mass_of(self.density, self.radius);
         let inverse = 1.0 / mass;
         let mass_ok = mass.is_finite() && mass > 0.0 && inverse.is_finite() && inverse > 0.0;
         if !(self.fixed || mass_ok) {
@@ -201,6 +201,11 @@ impl SphereDesc {
         }
         Ok(())
     }
+}
+
+/// The mass of a sphere of `density` and `radius` (one formula for validation and bodies).
+fn mass_of(density: f64, radius: f64) -> f64 {
+    density * 4.0 / 3.0 * PI * radius.powi(3)
 }
 
 /// Which field of a body an error is about.
@@ -263,7 +268,7 @@ impl Body {
         let inverse_mass = if desc.fixed {
             0.0
         } else {
-            1.0 / (desc.density * 4.0 / 3.0 * PI * desc.radius.powi(3))
+            1.0 / mass_of(desc.density, desc.radius)
         };
         Body {
             id,

@@ -25,7 +25,9 @@ use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
 
 use crate::generate::{GenerateError, Generator};
-use crate::{BodyError, IntegratorKind, Settings, SphereDesc, Tether, ToiMethod, World};
+use crate::{
+    BodyError, IntegratorKind, Settings, SphereDesc, Tether, ToiMethod, World, WorldError,
+};
 
 fn one() -> f64 {
     1.0
@@ -126,6 +128,9 @@ pub enum SceneError {
     /// A generator cannot make its spheres.
     #[error("{0}")]
     Generate(#[from] GenerateError),
+    /// The world settings the scene makes are invalid (see [`Settings::validate`]).
+    #[error("scene {0}")]
+    Settings(WorldError),
     /// A scene-wide setting is invalid.
     #[error("scene {field} {reason}, got {value}")]
     Setting {
@@ -210,29 +215,23 @@ impl SceneDesc {
                 reason: "must be finite, normal and > 0",
             });
         }
-        if let Some(substeps) = self.substeps.filter(|&s| s == 0 || s > crate::MAX_SUBSTEPS) {
+        if self.substeps == Some(0) {
             return Err(SceneError::Setting {
                 field: "substeps",
-                value: f64::from(substeps),
-                reason: "must be from 1 to 65536",
+                value: 0.0,
+                reason: "must be at least 1",
             });
         }
-        if let Some(ToiMethod::Bisection { max_iterations }) = self.method
-            && max_iterations > crate::MAX_BISECTION_ITERATIONS
-        {
-            return Err(SceneError::Setting {
-                field: "method",
-                value: f64::from(max_iterations),
-                reason: "bisection iterations must be at most 64",
-            });
-        }
-        Ok(Settings {
+        let settings = Settings {
             gravity,
             method: self.method.unwrap_or_default(),
             integrator: self.integrator.unwrap_or_default(),
             substeps: self.substeps.unwrap_or(1),
             ..Settings::default()
-        })
+        };
+        // The limits every world checks (substeps, bisection iterations), said at load time.
+        settings.validate().map_err(SceneError::Settings)?;
+        Ok(settings)
     }
 
     /// Every sphere of the scene: the listed ones, then each generator's, in order.

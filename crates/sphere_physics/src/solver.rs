@@ -28,19 +28,30 @@ struct Segment {
     radius: f64,
 }
 
-/// The rest of a body's step state, kept in body order (read at impacts and at the end).
-/// What every impact reads comes first, in one cache line; string state after.
+/// The rest of a body's step state, kept in body order (read at impacts and at the end):
+/// one cache line. A body on a string has its string's state apart, in a [`Strung`].
 #[derive(Clone, Copy, Debug)]
-#[repr(C)]
+#[repr(C, align(64))]
 struct Extra {
     acceleration: DVec3,
     kick_after: DVec3,
     restitution: f64,
     /// The body's id (records name bodies without reading the body array).
     id: crate::BodyId,
+    /// Index of the body's [`Strung`], or [`NO_STRING`].
+    string: u32,
+}
+
+/// [`Extra::string`] of a body without a string.
+const NO_STRING: u32 = u32::MAX;
+
+/// A string's state for the step, for the few bodies that hang on one: kept out of [`Extra`]
+/// so that every other body streams half the bytes.
+#[derive(Clone, Copy, Debug)]
+struct Strung {
+    tether: Tether,
     /// The string bent this segment's drift: it reaches its length by the end of the step.
     taut: bool,
-    tether: Option<Tether>,
     /// The velocity before the bend (what the sphere moves at while the string is slack).
     free_velocity: DVec3,
     /// How far inside the string's length the bent drift dips (its sagitta).
@@ -133,6 +144,8 @@ pub(crate) struct Solver {
     segments: Vec<Segment>,
     /// Each body's [`Extra`], in body order: segment `k`'s is `extras[order[k]]`.
     extras: Vec<Extra>,
+    /// The string states that [`Extra::string`] points to.
+    strung: Vec<Strung>,
     /// Whether any body hangs on a string this step.
     strings: bool,
     /// Each segment's version (bumped when its drift changes; older events are stale). Apart
@@ -285,6 +298,7 @@ impl Solver {
         self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
         self.extras.clear();
+        self.strung.clear();
         self.boxes.clear();
         let mut dynamic = 0u32;
         let mut largest_acceleration = 0.0f64;
@@ -303,13 +317,19 @@ impl Solver {
                 };
                 (a, (k.before, k.after))
             };
-            let tether = body.tether();
-            self.strings |= tether.is_some();
             let mut velocity = body.velocity() + kicks.0;
-            let free_velocity = velocity;
-            let (mut taut, mut sag) = (false, 0.0);
-            if let Some(tether) = tether {
+            let mut string = NO_STRING;
+            if let Some(tether) = body.tether() {
+                let free_velocity = velocity;
+                let (taut, sag);
                 (velocity, taut, sag) = chord(body.position(), velocity, tether, dt);
+                string = self.strung.len() as u32;
+                self.strung.push(Strung {
+                    tether,
+                    taut,
+                    free_velocity,
+                    sag,
+                });
             }
             let segment = Segment {
                 t0: 0.0,
@@ -326,14 +346,12 @@ impl Solver {
             self.extras.push(Extra {
                 kick_after: kicks.1,
                 acceleration,
-                tether,
-                taut,
-                free_velocity,
-                sag,
                 restitution: body.restitution(),
                 id: body.id(),
+                string,
             });
         }
+        self.strings = !self.strung.is_empty();
 
         if let Some(index) = overflow {
             return Err(index);
@@ -457,8 +475,8 @@ impl Solver {
             let segment = &self.segments[p as usize];
             let mut position = segment.position_at(dt);
             let mut velocity = segment.velocity + extra.kick_after;
-            if let Some(tether) = extra.tether {
-                (position, velocity) = taut(position, velocity, tether);
+            if let Some(strung) = self.strung.get(extra.string as usize) {
+                (position, velocity) = taut(position, velocity, strung.tether);
             }
             body.desc.position = position;
             body.desc.velocity = velocity;
@@ -664,11 +682,11 @@ impl Solver {
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
             let segment = &mut self.segments[k];
-            let extra = &mut self.extras[self.order[k] as usize];
-            if let Some(tether) = extra.tether {
-                extra.free_velocity = segment.velocity;
-                (segment.velocity, extra.taut, extra.sag) =
-                    chord(segment.position, segment.velocity, tether, ctx.dt);
+            let string = self.extras[self.order[k] as usize].string;
+            if let Some(strung) = self.strung.get_mut(string as usize) {
+                strung.free_velocity = segment.velocity;
+                (segment.velocity, strung.taut, strung.sag) =
+                    chord(segment.position, segment.velocity, strung.tether, ctx.dt);
             }
             self.versions[k] += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
@@ -696,6 +714,11 @@ impl Solver {
         &self.extras[self.order[k] as usize]
     }
 
+    /// Segment `k`'s string state, if it hangs on a string.
+    fn strung(&self, k: usize) -> Option<&Strung> {
+        self.strung.get(self.extra(k).string as usize)
+    }
+
     /// Gives segment `k` its velocity after an impulse at time `t`: bent along its string if it
     /// has one, its pending events made stale and its box regrown. Fixed segments never change,
     /// so their other pending events stay valid.
@@ -705,11 +728,11 @@ impl Solver {
             return;
         }
         segment.velocity = velocity;
-        let extra = &mut self.extras[self.order[k] as usize];
-        if let Some(tether) = extra.tether {
-            extra.free_velocity = velocity;
-            (segment.velocity, extra.taut, extra.sag) =
-                chord(segment.position, velocity, tether, ctx.dt - t);
+        let string = self.extras[self.order[k] as usize].string;
+        if let Some(strung) = self.strung.get_mut(string as usize) {
+            strung.free_velocity = velocity;
+            (segment.velocity, strung.taut, strung.sag) =
+                chord(segment.position, velocity, strung.tether, ctx.dt - t);
         }
         self.versions[k] += 1;
         self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
@@ -721,11 +744,15 @@ impl Solver {
         if !self.strings {
             return false;
         }
-        let (segment, extra) = (&self.segments[k], self.extra(k));
-        match (extra.tether, extra.taut) {
-            (Some(tether), true) => {
-                let distance = (segment.position_at(t) - tether.anchor).length();
-                tether.length - distance <= 1.5 * extra.sag + 1e-12 * tether.length
+        match self.strung(k) {
+            Some(&Strung {
+                tether,
+                taut: true,
+                sag,
+                ..
+            }) => {
+                let distance = (self.segments[k].position_at(t) - tether.anchor).length();
+                tether.length - distance <= 1.5 * sag + 1e-12 * tether.length
             }
             _ => false,
         }
@@ -761,17 +788,16 @@ impl Solver {
             let k = self.local_bodies[i] as usize;
             let taut = self.taut_at(k, t);
             self.local_taut.push(taut);
-            let extra = self.extras[self.order[k] as usize];
+            let strung = self.strung(k).copied();
             let segment = &mut self.segments[k];
             segment.advance_to(t);
             self.local_inverse_masses.push(segment.inverse_mass);
-            let mut velocity = if extra.taut && !taut {
+            let mut velocity = match strung {
                 // Bent for later, slack now: it moves freely.
-                extra.free_velocity
-            } else {
-                segment.velocity
+                Some(strung) if strung.taut && !taut => strung.free_velocity,
+                _ => segment.velocity,
             };
-            if let (Some(tether), true) = (extra.tether, taut) {
+            if let (Some(Strung { tether, .. }), true) = (strung, taut) {
                 // The drift is a chord of the string's sphere; the sphere itself is on that
                 // sphere, moving tangent to it. Put it there (a move of at most the chord's
                 // sagitta, ~(v·dt)²/8L) and drop the drift's radial part (the string's pull).
@@ -809,8 +835,9 @@ impl Solver {
         // Taut strings of the bodies involved, each to a virtual fixed anchor.
         for (local, &k) in self.local_bodies.iter().enumerate() {
             let segment = &self.segments[k as usize];
-            let extra = self.extra(k as usize);
-            if let (Some(tether), true) = (extra.tether, self.local_taut[local]) {
+            if let (Some(&Strung { tether, .. }), true) =
+                (self.strung(k as usize), self.local_taut[local])
+            {
                 let r = segment.position - tether.anchor;
                 let distance = r.length();
                 if distance > 0.0 {
@@ -951,10 +978,12 @@ impl Solver {
             let segment = &mut self.segments[k];
             segment.advance_to(t);
             if self.strings {
-                let extra = &self.extras[self.order[k] as usize];
-                if extra.taut {
+                let string = self.extras[self.order[k] as usize].string;
+                if let Some(strung) = self.strung.get(string as usize)
+                    && strung.taut
+                {
                     // Bent for later, slack now: it moves freely.
-                    segment.velocity = extra.free_velocity;
+                    segment.velocity = strung.free_velocity;
                 }
             }
         }

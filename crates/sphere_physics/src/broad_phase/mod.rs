@@ -134,10 +134,10 @@ impl BroadPhase {
     }
 
     /// The typical box, per axis: the longest side up to twice the median side (the median
-    /// taken over at most 4096 boxes spread through the scene).
+    /// taken over at most 1024 boxes spread through the scene).
     fn typical_box(&mut self, boxes: &[Aabb]) -> DVec3 {
-        let stride = boxes.len().div_ceil(4096).max(1);
-        let mut typical = DVec3::ONE;
+        let stride = boxes.len().div_ceil(1024).max(1);
+        let mut limit = DVec3::ZERO;
         for a in 0..3 {
             self.scratch.clear();
             self.scratch.extend(
@@ -155,16 +155,15 @@ impl BroadPhase {
                 .scratch
                 .select_nth_unstable_by(middle, f64::total_cmp)
                 .1;
-            let largest = boxes
-                .iter()
-                .map(|b| b.hi[a] - b.lo[a])
-                .filter(|&e| e <= 2.0 * median)
-                .fold(0.0f64, f64::max);
-            if largest > 0.0 {
-                typical[a] = largest;
-            }
+            limit[a] = 2.0 * median;
         }
-        typical
+        // The longest sides within the limits, all three axes in one pass over the boxes.
+        let largest = boxes.iter().fold(DVec3::ZERO, |largest, b| {
+            let side = b.hi - b.lo;
+            // A side over its limit (or NaN) counts as zero.
+            largest.max(DVec3::select(side.cmple(limit), side, DVec3::ZERO))
+        });
+        DVec3::select(largest.cmpgt(DVec3::ZERO), largest, DVec3::ONE)
     }
 
     /// The block of cells the grid spans: all the grid bodies' cells, cut down to at most

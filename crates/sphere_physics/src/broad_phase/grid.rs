@@ -177,34 +177,32 @@ impl Grid {
 
     /// Calls `f(i, j)` with `i < j` for every pair of grid bodies whose boxes overlap, each
     /// pair once: a cell with itself and its 13 neighbours that follow it, body by body (empty
-    /// cells cost nothing). Call right after [`Grid::layout`].
+    /// cells cost nothing). Call right after [`Grid::layout`], with a block that has an empty
+    /// cell on every side of the bodies' cells.
     pub fn pairs(&self, f: &mut impl FnMut(usize, usize)) {
         let boxes = &self.boxes[..];
-        let [nx, ny, nz] = self.dims;
-        let start = &self.start;
+        let [nx, ny, _] = self.dims;
+        let start = &self.start[..];
+        // The forward rows of three cells (x − 1 ..= x + 1) at (y + 1, z), (y − 1, z + 1),
+        // (y, z + 1) and (y + 1, z + 1), as offsets from the body's cell.
+        let rows = [nx - 1, nx * ny - nx - 1, nx * ny - 1, nx * ny + nx - 1];
         for i in 0..self.len {
             let k = self.cells[i];
-            let (x, y, z) = (
-                (k[0] - self.origin[0]) as usize,
-                (k[1] - self.origin[1]) as usize,
-                (k[2] - self.origin[2]) as usize,
-            );
-            let c = x + nx * (y + ny * z);
+            let c = (k[0] - self.origin[0]) as usize
+                + nx * ((k[1] - self.origin[1]) as usize + ny * (k[2] - self.origin[2]) as usize);
             // Own cell (after i) and the next along x: one range. Then four rows of three.
-            let own_end = start[c + 1 + usize::from(x + 1 < nx)] as usize;
             let bi = &boxes[i];
-            pairs_in(bi, i, boxes, i + 1, own_end, f);
-            let xl = x.saturating_sub(1);
-            let xh = (x + 1).min(nx - 1);
-            for (dy, dz) in [(1isize, 0usize), (-1, 1), (0, 1), (1, 1)] {
-                let yy = y as isize + dy;
-                let zz = z + dz;
-                if yy < 0 || yy as usize >= ny || zz >= nz {
-                    continue;
-                }
-                let row = xl + nx * (yy as usize + ny * zz);
-                let (from, to) = (start[row] as usize, start[row + (xh - xl) + 1] as usize);
-                pairs_in(bi, i, boxes, from, to, f);
+            pairs_in(bi, i, boxes, i + 1, start[c + 2] as usize, f);
+            for offset in rows {
+                let row = c + offset;
+                pairs_in(
+                    bi,
+                    i,
+                    boxes,
+                    start[row] as usize,
+                    start[row + 3] as usize,
+                    f,
+                );
             }
         }
     }

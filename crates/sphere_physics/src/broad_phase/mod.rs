@@ -215,8 +215,10 @@ impl BroadPhase {
                 }
             }
         }
-        self.origin = lo;
-        self.dims = [0, 1, 2].map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 1) as usize);
+        // An empty cell on every side, so that every grid body's 26 neighbour cells are in the
+        // block: the grid's pair scan needs no bounds checks.
+        self.origin = lo.map(|v| v - 1);
+        self.dims = [0, 1, 2].map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 3) as usize);
     }
 
     /// Builds both tiers for `boxes`, in the order [`BroadPhase::sort`] chose.

@@ -180,6 +180,10 @@ impl Grid {
     /// cells cost nothing). Call right after [`Grid::layout`], with a block that has an empty
     /// cell on every side of the bodies' cells.
     pub fn pairs(&self, f: &mut impl FnMut(usize, usize)) {
+        if self.len == 0 {
+            // No body fits the grid: its block is a bare cell, with no rows around it.
+            return;
+        }
         let boxes = &self.boxes[..];
         let [nx, ny, _] = self.dims;
         let start = &self.start[..];

@@ -166,8 +166,8 @@ impl BroadPhase {
         DVec3::select(largest.cmpgt(DVec3::ZERO), largest, DVec3::ONE)
     }
 
-    /// The block of cells the grid spans: all the grid bodies' cells, cut down to at most
-    /// 16 cells per body (stragglers go to the hierarchy instead). A shower falls as a lattice
+    /// The block of cells the grid spans: all the grid bodies' cells and an empty border, cut
+    /// down to at most 16 cells per body (stragglers go to the hierarchy instead). A shower falls as a lattice
     /// with one site in eight filled: about ten cells per sphere.
     fn choose_block(&mut self, n: usize) {
         let limit = 16 * n as u64 + 64;
@@ -183,9 +183,10 @@ impl BroadPhase {
             (self.origin, self.dims) = ([0; 3], [1; 3]);
             return;
         }
+        // Cells in the block from `lo` to `hi` with its empty border (see below).
         let volume = |lo: &[i32; 3], hi: &[i32; 3]| {
             (0..3)
-                .map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 1) as u64)
+                .map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 3) as u64)
                 .fold(1u64, u64::saturating_mul)
         };
         if volume(&lo, &hi) > limit {

@@ -174,6 +174,10 @@ pub(crate) struct Solver {
     tested: Vec<(u32, u32)>,
     touched_flags: Vec<u32>,
     touched_epoch: u32,
+    /// The first segment an impulse sent beyond the finite range within the step (a sphere
+    /// struck by a kinematic one moving near the largest finite speed, say): the step stops
+    /// and is refused before anything is written back.
+    unbounded: Option<usize>,
     pub collisions: Vec<Collision>,
     /// Pairs whose impact at `settled_time` gave no impulse, with both bodies' versions after
     /// it: at that instant they do not approach, though a string's bent drift may say they do
@@ -282,8 +286,8 @@ pub(crate) struct StepContext<'a> {
 impl Solver {
     /// Advances `bodies` (all live, in id order) by `ctx.dt`, filling the collision counters,
     /// energies and momentum of `stats`, and `self.collisions`. If a body's drift would leave
-    /// the finite range within the step (an absurd time step or speed), returns its index
-    /// before changing anything.
+    /// the finite range within the step (an absurd time step or speed, from the start or after
+    /// an impulse), returns its index before changing any body.
     pub fn step(
         &mut self,
         bodies: &mut [Body],
@@ -295,6 +299,7 @@ impl Solver {
         self.tested.clear();
         self.settled.clear();
         self.settled_time = f64::NAN;
+        self.unbounded = None;
         self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
         self.extras.clear();
@@ -409,11 +414,14 @@ impl Solver {
         // Events closer in time than this are one simultaneous group.
         let simultaneity = settings.tolerance.epsilon() * dt;
         while let Some(event) = self.queue.pop() {
+            if self.unbounded.is_some() {
+                break;
+            }
             if !self.is_current(&event) {
                 continue;
             }
             if events >= budget {
-                stats.collisions_deferred += 1;
+                stats.collisions_deferred = stats.collisions_deferred.saturating_add(1);
                 continue;
             }
             self.group.clear();
@@ -438,10 +446,12 @@ impl Solver {
             for range in ranges.iter().cloned() {
                 let component = &group[range];
                 if events >= budget {
-                    stats.collisions_deferred += component.len() as u32;
+                    stats.collisions_deferred = stats
+                        .collisions_deferred
+                        .saturating_add(component.len() as u32);
                     continue;
                 }
-                events += component.len() as u32;
+                events = events.saturating_add(component.len() as u32);
                 match component {
                     [single] => self.resolve_event(single, ctx, stats),
                     _ => self.resolve_group(component, event.time, ctx, stats),
@@ -461,6 +471,9 @@ impl Solver {
             self.requery_touched(event.time, ctx, stats);
         }
 
+        if let Some(k) = self.unbounded {
+            return Err(self.order[k] as usize);
+        }
         // Write back in body order (bodies and extras read in order, segments gathered),
         // summing the energies and momentum while each body is at hand.
         self.finals.clear();
@@ -558,11 +571,12 @@ impl Solver {
         self.touched.clear();
         self.touched_epoch = self.touched_epoch.wrapping_add(1);
         if self.touched_epoch == 0 {
-            self.touched_flags.iter_mut().for_each(|f| *f = u32::MAX);
+            self.touched_flags.iter_mut().for_each(|f| *f = 0);
             self.touched_epoch = 1;
         }
         if self.touched_flags.len() < self.segments.len() {
-            self.touched_flags.resize(self.segments.len(), u32::MAX);
+            // 0: no epoch (epochs run from 1 to u32::MAX, then every flag is reset).
+            self.touched_flags.resize(self.segments.len(), 0);
         }
     }
 
@@ -690,6 +704,7 @@ impl Solver {
             }
             self.versions[k] += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
+            self.check_bounded(k);
         }
     }
 
@@ -736,6 +751,15 @@ impl Solver {
         }
         self.versions[k] += 1;
         self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
+        self.check_bounded(k);
+    }
+
+    /// Records segment `k` as [`Solver::unbounded`] if its new drift leaves the finite range.
+    fn check_bounded(&mut self, k: usize) {
+        let b = &self.boxes[k];
+        if !(b.lo.is_finite() && b.hi.is_finite() && self.segments[k].velocity.is_finite()) {
+            self.unbounded.get_or_insert(k);
+        }
     }
 
     /// Whether segment `k`'s string is at its length at time `t`: its drift was bent, and at

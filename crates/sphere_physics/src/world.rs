@@ -337,10 +337,12 @@ impl World {
         &self.solver.collisions
     }
 
-    /// Advances the world by `dt`. On an invalid `dt` or invalid settings (see
-    /// [`Settings::validate`]) nothing changes. A sphere whose position or velocity would leave
-    /// the finite range within the step (an absurd `dt` or speed) is an error naming it; the
-    /// step stops before the substep that would overflow, so no state turns infinite or NaN.
+    /// Advances the world by `dt`. On an invalid `dt` (or one the settings' substeps would cut
+    /// into subnormal substeps) or invalid settings (see [`Settings::validate`]) nothing
+    /// changes. A sphere whose position or velocity would leave the finite range within the
+    /// step (an absurd `dt` or speed, or the impulse of a kinematic sphere moving near the
+    /// largest finite speed) is an error naming it; the step stops before the substep that
+    /// would overflow, so no state turns infinite or NaN.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
         if !(dt.is_normal() && dt > 0.0) {
             return Err(WorldError::InvalidTimeStep(dt));
@@ -352,6 +354,15 @@ impl World {
         };
         let substeps = self.settings.substeps.max(1);
         let sub_dt = dt / f64::from(substeps);
+        if !sub_dt.is_normal() {
+            // A subnormal substep overflows what is divided by it (a resting contact's
+            // correction speed) to infinity.
+            return Err(WorldError::InvalidSetting {
+                field: "substeps",
+                value: format!("{substeps}"),
+                reason: "must leave each substep of this time step a normal number",
+            });
+        }
         self.solver.collisions.clear();
         for k in 0..substeps {
             let ctx = StepContext {

@@ -1,8 +1,10 @@
 //! Bad input never panics, hangs or poisons the state: settings are checked at every step
 //! (their fields are public), a subnormal time step is refused, a density or radius whose mass
 //! (or its inverse) overflows is refused when the sphere is added, and a generator's box far
-//! larger than its spheres neither overflows nor panics. Found by a review; each case used to
-//! return Ok and leave NaN behind, hang, or panic on an overflow.
+//! larger than its spheres neither overflows nor panics; substeps that cut a step into
+//! subnormal ones are refused, and so is a step in which an impulse would send a sphere beyond
+//! the finite range. Found by reviews; each case used to return Ok and leave NaN or infinities
+//! behind, hang, or panic on an overflow.
 
 use sphere_physics::generate::Generator;
 use sphere_physics::{Field, Settings, SphereDesc, ToiMethod, World, WorldError, glam::DVec3};
@@ -138,4 +140,74 @@ fn regression_a_step_that_would_overflow_is_refused() {
     }
     world.step(1.0 / 60.0).unwrap();
     assert!(world.bodies().iter().all(|b| b.position().is_finite()));
+}
+
+#[test]
+fn regression_substeps_that_make_a_subnormal_substep_are_refused() {
+    // dt is normal, but two substeps of it are not: the correction speed of the ball's resting
+    // contact (its overlap divided by the substep) threw it out at some 1e306 m/s, its kinetic
+    // energy infinite. Found by a review.
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world.add_sphere(SphereDesc::new(1.0).fixed()).unwrap();
+    world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.0, 1.49, 0.0)))
+        .unwrap();
+    let before = world.bodies().to_vec();
+    world.settings_mut().substeps = 2;
+    let dt: f64 = 3e-308; // normal; half of it is not
+    assert!(dt.is_normal() && !(dt / 2.0).is_normal());
+    match world.step(dt) {
+        Err(WorldError::InvalidSetting { field, .. }) => assert_eq!(field, "substeps"),
+        other => panic!("expected the substeps refused, got {other:?}"),
+    }
+    assert_eq!(world.bodies(), &before[..]);
+    world.settings_mut().substeps = 1;
+    world.step(dt).unwrap();
+    assert!(world.bodies().iter().all(|b| b.velocity().is_finite()));
+}
+
+#[test]
+fn regression_an_impulse_beyond_the_finite_range_is_refused() {
+    // A kinematic sphere near the largest finite speed strikes a ball at rest: the ball would
+    // leave at twice that speed, which is infinite. Found by a review: the step returned Ok
+    // and wrote the infinite velocity back.
+    let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
+    let paddle = world
+        .add_sphere(
+            SphereDesc::new(1.0)
+                .fixed()
+                .moving(DVec3::new(1e308, 0.0, 0.0)),
+        )
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(1.0)
+                .at(DVec3::new(2.05, 0.0, 0.0))
+                .named("ball"),
+        )
+        .unwrap();
+    let before = world.bodies().to_vec();
+    match world.step(1.0 / 60.0) {
+        Err(WorldError::Body(error)) => {
+            assert_eq!(error.field, Field::Velocity);
+            assert!(error.body.starts_with("'ball'"), "{error}");
+        }
+        other => panic!("expected an error, got {other:?}"),
+    }
+    assert_eq!(world.bodies(), &before[..]);
+    // Not poisoned: at a sane speed the same strike is exact.
+    world
+        .set_velocity(paddle, DVec3::new(10.0, 0.0, 0.0))
+        .unwrap();
+    world.step(1.0 / 60.0).unwrap();
+    let ball = world
+        .bodies()
+        .iter()
+        .find(|b| b.name() == Some("ball"))
+        .unwrap();
+    assert!(
+        (ball.velocity() - DVec3::new(20.0, 0.0, 0.0)).length() <= 1e-9,
+        "{}",
+        ball.velocity()
+    );
 }

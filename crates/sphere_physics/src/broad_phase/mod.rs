@@ -167,8 +167,8 @@ impl BroadPhase {
     }
 
     /// The block of cells the grid spans: all the grid bodies' cells and an empty border, cut
-    /// down to at most 16 cells per body (stragglers go to the hierarchy instead). A shower falls as a lattice
-    /// with one site in eight filled: about ten cells per sphere.
+    /// down to at most 16 cells per body (stragglers go to the hierarchy instead). A shower
+    /// falls as a lattice with one site in eight filled: about ten cells per sphere.
     fn choose_block(&mut self, n: usize) {
         let limit = 16 * n as u64 + 64;
         let mut lo = [i32::MAX; 3];

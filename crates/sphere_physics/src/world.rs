@@ -45,8 +45,10 @@ pub struct Settings {
     /// that grows with the step, such as a tethered pendulum's energy error at each impact
     /// (which falls as dt²), falls as `1/substeps²` at `substeps` times the cost.
     pub substeps: u32,
-    /// The step's collision budget is this times the number of dynamic bodies; collisions beyond it
-    /// are deferred to the next step and counted in [`StepStats::collisions_deferred`].
+    /// The step's collision budget is this times the number of dynamic bodies, and no body takes
+    /// more than 16 times this in one step (so that a sphere caught between fixed ones, which
+    /// bounces between them without end, cannot spend the whole budget); collisions beyond
+    /// either are deferred to the next step and counted in [`StepStats::collisions_deferred`].
     pub max_collisions_per_body: u32,
 }
 

@@ -1,0 +1,52 @@
+//! Regression: a sphere wedged between two fixed spheres it overlaps (a spawn inside a gap
+//! too narrow for it) bounces between them at one instant without end. It used to spend the
+//! whole world's collision budget on that every step, so every other collision in the world
+//! was deferred: spheres elsewhere passed through each other. Found by review. Now one body
+//! takes at most 16 times `max_collisions_per_body` collisions in a step.
+
+use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+
+#[test]
+fn regression_a_wedged_sphere_does_not_stop_the_rest_of_the_world() {
+    let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
+    // The wedge: fixed spheres at x = -1 and x = 1, a ball of radius 0.5 between them, moving.
+    world
+        .add_sphere(SphereDesc::new(1.0).at(DVec3::new(-1.0, 0.0, 0.0)).fixed())
+        .unwrap();
+    world
+        .add_sphere(SphereDesc::new(1.0).at(DVec3::new(1.0, 0.0, 0.0)).fixed())
+        .unwrap();
+    world
+        .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
+        .unwrap();
+    // Elsewhere, 40 head-on pairs that meet within the first step.
+    let mut pairs = Vec::new();
+    for k in 0..40 {
+        let centre = DVec3::new(10.0 + 3.0 * k as f64, 0.0, 0.0);
+        let a = world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(centre - DVec3::Y * 0.51)
+                    .moving(DVec3::Y),
+            )
+            .unwrap();
+        let b = world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(centre + DVec3::Y * 0.51)
+                    .moving(-DVec3::Y),
+            )
+            .unwrap();
+        pairs.push((a, b));
+    }
+    let stats = *world.step(1.0 / 60.0).unwrap();
+    for (a, b) in pairs {
+        // Equal masses, elastic, head-on: the velocities are exchanged.
+        assert_eq!(world.body(a).unwrap().velocity(), -DVec3::Y);
+        assert_eq!(world.body(b).unwrap().velocity(), DVec3::Y);
+    }
+    // The wedged ball's bounces were cut off at its share, and the step went on.
+    let share = 16 * world.settings().max_collisions_per_body;
+    assert!(stats.collisions >= share + 40, "{stats:?}");
+    assert!(stats.collisions_deferred > 0, "{stats:?}");
+}

@@ -50,3 +50,49 @@ fn regression_a_wedged_sphere_does_not_stop_the_rest_of_the_world() {
     assert!(stats.collisions >= share + 40, "{stats:?}");
     assert!(stats.collisions_deferred > 0, "{stats:?}");
 }
+
+#[test]
+fn regression_a_sphere_pressed_by_a_kinematic_one_does_not_stop_the_rest_of_the_world() {
+    // A kinematic paddle closes on a ball resting against a fixed wall: the ball bounces
+    // between them at ever closer times (not one instant), as often as the budget allows.
+    let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
+    world
+        .add_sphere(SphereDesc::new(1.0).at(DVec3::new(2.0, 0.0, 0.0)).fixed())
+        .unwrap();
+    world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.5, 0.0, 0.0)))
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(1.0)
+                .at(DVec3::new(-1.0, 0.0, 0.0))
+                .fixed()
+                .moving(DVec3::X),
+        )
+        .unwrap();
+    let mut pairs = Vec::new();
+    for k in 0..40 {
+        let centre = DVec3::new(10.0 + 3.0 * k as f64, 0.0, 0.0);
+        let a = world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(centre - DVec3::Y * 0.51)
+                    .moving(DVec3::Y),
+            )
+            .unwrap();
+        let b = world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(centre + DVec3::Y * 0.51)
+                    .moving(-DVec3::Y),
+            )
+            .unwrap();
+        pairs.push((a, b));
+    }
+    let stats = *world.step(1.0 / 60.0).unwrap();
+    for (a, b) in pairs {
+        assert_eq!(world.body(a).unwrap().velocity(), -DVec3::Y);
+        assert_eq!(world.body(b).unwrap().velocity(), DVec3::Y);
+    }
+    assert!(stats.collisions_deferred > 0, "{stats:?}");
+}

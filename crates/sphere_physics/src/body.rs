@@ -5,11 +5,12 @@ use std::fmt;
 
 use glam::DVec3;
 
-/// Stable identifier of a body in a [`World`](crate::World). Ids are never reused. Ties between
+/// Stable identifier of a body in a [`World`](crate::World). Ids are never reused (64 bits: a
+/// world adding a million spheres a second runs out after half a million years). Ties between
 /// simultaneous events are broken by a deterministic order (ids in small scenes, the broad
 /// phase's spatial order in large ones), so results never depend on hash order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct BodyId(pub(crate) u32);
+pub struct BodyId(pub(crate) u64);
 
 impl BodyId {
     /// The id as an index: bodies are numbered 0, 1, 2, ... in the order they were added.

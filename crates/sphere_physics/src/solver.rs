@@ -38,17 +38,16 @@ struct Extra {
     restitution: f64,
     /// The body's id (records name bodies without reading the body array).
     id: crate::BodyId,
-    /// Index of the body's [`Strung`], or [`NO_STRING`].
-    string: u32,
 }
 
-/// [`Extra::string`] of a body without a string.
-const NO_STRING: u32 = u32::MAX;
+const _: () = assert!(size_of::<Extra>() == 64, "an Extra is one cache line");
 
 /// A string's state for the step, for the few bodies that hang on one: kept out of [`Extra`]
 /// so that every other body streams half the bytes.
 #[derive(Clone, Copy, Debug)]
 struct Strung {
+    /// The body's index (the strung bodies are listed in body order).
+    body: u32,
     tether: Tether,
     /// The string bent this segment's drift: it reaches its length by the end of the step.
     taut: bool,
@@ -328,13 +327,12 @@ impl Solver {
                 (a, (k.before, k.after))
             };
             let mut velocity = body.velocity() + kicks.0;
-            let mut string = NO_STRING;
             if let Some(tether) = body.tether() {
                 let free_velocity = velocity;
                 let (taut, sag);
                 (velocity, taut, sag) = chord(body.position(), velocity, tether, dt);
-                string = self.strung.len() as u32;
                 self.strung.push(Strung {
+                    body: index as u32,
                     tether,
                     taut,
                     free_velocity,
@@ -358,7 +356,6 @@ impl Solver {
                 acceleration,
                 restitution: body.restitution(),
                 id: body.id(),
-                string,
             });
         }
         self.strings = !self.strung.is_empty();
@@ -499,12 +496,18 @@ impl Solver {
             self.position_of[i as usize] = p as u32;
         }
         let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
-        for ((body, extra), &p) in bodies.iter_mut().zip(&self.extras).zip(&self.position_of) {
+        let mut strung = self.strung.iter().peekable();
+        for (index, ((body, extra), &p)) in bodies
+            .iter_mut()
+            .zip(&self.extras)
+            .zip(&self.position_of)
+            .enumerate()
+        {
             let segment = &self.segments[p as usize];
             let mut position = segment.position_at(dt);
             let mut velocity = segment.velocity + extra.kick_after;
-            if let Some(strung) = self.strung.get(extra.string as usize) {
-                (position, velocity) = taut(position, velocity, strung.tether);
+            if let Some(string) = strung.next_if(|s| s.body as usize == index) {
+                (position, velocity) = taut(position, velocity, string.tether);
             }
             body.desc.position = position;
             body.desc.velocity = velocity;
@@ -710,9 +713,10 @@ impl Solver {
         self.resting = resting;
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
+            let string = self.string_of(k);
             let segment = &mut self.segments[k];
-            let string = self.extras[self.order[k] as usize].string;
-            if let Some(strung) = self.strung.get_mut(string as usize) {
+            if let Some(s) = string {
+                let strung = &mut self.strung[s];
                 strung.free_velocity = segment.velocity;
                 (segment.velocity, strung.taut, strung.sag) =
                     chord(segment.position, segment.velocity, strung.tether, ctx.dt);
@@ -746,20 +750,30 @@ impl Solver {
 
     /// Segment `k`'s string state, if it hangs on a string.
     fn strung(&self, k: usize) -> Option<&Strung> {
-        self.strung.get(self.extra(k).string as usize)
+        self.string_of(k).map(|s| &self.strung[s])
+    }
+
+    /// Where segment `k`'s string state is in [`Solver::strung`], if it hangs on a string.
+    fn string_of(&self, k: usize) -> Option<usize> {
+        if !self.strings {
+            return None;
+        }
+        let body = self.order[k];
+        self.strung.binary_search_by_key(&body, |s| s.body).ok()
     }
 
     /// Gives segment `k` its velocity after an impulse at time `t`: bent along its string if it
     /// has one, its pending events made stale and its box regrown. Fixed segments never change,
     /// so their other pending events stay valid.
     fn set_velocity(&mut self, k: usize, velocity: DVec3, t: f64, ctx: &StepContext<'_>) {
-        let segment = &mut self.segments[k];
-        if segment.is_fixed() {
+        if self.segments[k].is_fixed() {
             return;
         }
+        let string = self.string_of(k);
+        let segment = &mut self.segments[k];
         segment.velocity = velocity;
-        let string = self.extras[self.order[k] as usize].string;
-        if let Some(strung) = self.strung.get_mut(string as usize) {
+        if let Some(s) = string {
+            let strung = &mut self.strung[s];
             strung.free_velocity = velocity;
             (segment.velocity, strung.taut, strung.sag) =
                 chord(segment.position, velocity, strung.tether, ctx.dt - t);
@@ -1014,16 +1028,12 @@ impl Solver {
             return;
         }
         for k in [a, b] {
+            let slack = self.strung(k).filter(|s| s.taut).map(|s| s.free_velocity);
             let segment = &mut self.segments[k];
             segment.advance_to(t);
-            if self.strings {
-                let string = self.extras[self.order[k] as usize].string;
-                if let Some(strung) = self.strung.get(string as usize)
-                    && strung.taut
-                {
-                    // Bent for later, slack now: it moves freely.
-                    segment.velocity = strung.free_velocity;
-                }
+            if let Some(free_velocity) = slack {
+                // Bent for later, slack now: it moves freely.
+                segment.velocity = free_velocity;
             }
         }
         let (sa, sb) = (self.segments[a], self.segments[b]);

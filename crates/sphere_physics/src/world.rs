@@ -188,7 +188,7 @@ pub struct World {
     toi: Option<Box<dyn TimeOfImpact>>,
     /// Live bodies, sorted by id.
     bodies: Vec<Body>,
-    next_id: u32,
+    next_id: u64,
     time: f64,
     steps: u64,
     stats: StepStats,

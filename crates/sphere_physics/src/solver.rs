@@ -208,6 +208,12 @@ pub(crate) struct Solver {
 #[derive(Debug, Default)]
 struct Components {
     label: Vec<usize>,
+    /// Union–find over the events: each event's parent.
+    parent: Vec<usize>,
+    /// Each event's two bodies, as (body, event), sorted so that events sharing a body meet.
+    ends: Vec<(u32, usize)>,
+    /// Each component root's smallest event.
+    first: Vec<usize>,
     keyed: Vec<(usize, usize)>,
     sorted: Vec<Event>,
 }
@@ -225,23 +231,47 @@ fn sort_into_components(
         ranges.push(0..n);
         return;
     }
-    // Simultaneous groups are rare and small: label each event with the smallest index it is
-    // connected to, until nothing changes.
-    let shares = |x: &Event, y: &Event| x.a == y.a || x.a == y.b || x.b == y.a || x.b == y.b;
+    // Label each event with the smallest index it is connected to (through shared bodies):
+    // union–find over the events, joining those that share a body, in O(n log n). Groups are
+    // usually small, but a sheet of spheres landing flat at one instant makes tens of
+    // thousands of events at once.
+    let parent = &mut scratch.parent;
+    parent.clear();
+    parent.extend(0..n);
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let ends = &mut scratch.ends;
+    ends.clear();
+    ends.extend(
+        events
+            .iter()
+            .enumerate()
+            .flat_map(|(i, e)| [(e.a, i), (e.b, i)]),
+    );
+    ends.sort_unstable();
+    for pair in ends.windows(2) {
+        if pair[0].0 == pair[1].0 {
+            let (x, y) = (root(parent, pair[0].1), root(parent, pair[1].1));
+            parent[x.max(y)] = x.min(y);
+        }
+    }
+    let first = &mut scratch.first;
+    first.clear();
+    first.resize(n, usize::MAX);
     let label = &mut scratch.label;
     label.clear();
-    label.extend(0..n);
-    let mut changed = true;
-    while changed {
-        changed = false;
-        for i in 0..n {
-            for j in 0..n {
-                if label[j] < label[i] && shares(&events[i], &events[j]) {
-                    label[i] = label[j];
-                    changed = true;
-                }
-            }
+    for i in 0..n {
+        let r = root(parent, i);
+        // Events are visited in order: the first to reach a root is its smallest.
+        if first[r] == usize::MAX {
+            first[r] = i;
         }
+        label.push(first[r]);
     }
     let keyed = &mut scratch.keyed;
     keyed.clear();

@@ -140,7 +140,7 @@ impl Ord for Event {
 /// How many times [`Settings::max_collisions_per_body`] one body may take in a step (the
 /// world's budget is that setting times the dynamic bodies): 1024 by default, where a sphere
 /// at the bottom of the 100k-sphere shower benchmark's pile takes up to 381.
-pub(crate) const BODY_SHARE: u32 = 16;
+const BODY_SHARE: u32 = 16;
 
 /// Scratch space for stepping, kept between steps so a warmed-up step does not allocate.
 #[derive(Debug, Default)]

@@ -4,7 +4,31 @@
 //! was deferred: spheres elsewhere passed through each other. Found by review. Now one body
 //! takes at most 16 times `max_collisions_per_body` collisions in a step.
 
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+use sphere_physics::{BodyId, Settings, SphereDesc, World, glam::DVec3};
+
+/// Elsewhere in the world, 40 head-on pairs that meet within the first step.
+fn add_head_on_pairs(world: &mut World) -> Vec<(BodyId, BodyId)> {
+    (0..40)
+        .map(|k| {
+            let centre = DVec3::new(10.0 + 3.0 * k as f64, 0.0, 0.0);
+            let [a, b] = [-1.0, 1.0].map(|side| {
+                let ball = SphereDesc::new(0.5)
+                    .at(centre + DVec3::Y * (0.51 * side))
+                    .moving(-DVec3::Y * side);
+                world.add_sphere(ball).unwrap()
+            });
+            (a, b)
+        })
+        .collect()
+}
+
+/// Equal masses, elastic, head-on: every pair's velocities are exchanged.
+fn assert_exchanged(world: &World, pairs: &[(BodyId, BodyId)]) {
+    for &(a, b) in pairs {
+        assert_eq!(world.body(a).unwrap().velocity(), -DVec3::Y);
+        assert_eq!(world.body(b).unwrap().velocity(), DVec3::Y);
+    }
+}
 
 #[test]
 fn regression_a_wedged_sphere_does_not_stop_the_rest_of_the_world() {
@@ -19,32 +43,9 @@ fn regression_a_wedged_sphere_does_not_stop_the_rest_of_the_world() {
     world
         .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
         .unwrap();
-    // Elsewhere, 40 head-on pairs that meet within the first step.
-    let mut pairs = Vec::new();
-    for k in 0..40 {
-        let centre = DVec3::new(10.0 + 3.0 * k as f64, 0.0, 0.0);
-        let a = world
-            .add_sphere(
-                SphereDesc::new(0.5)
-                    .at(centre - DVec3::Y * 0.51)
-                    .moving(DVec3::Y),
-            )
-            .unwrap();
-        let b = world
-            .add_sphere(
-                SphereDesc::new(0.5)
-                    .at(centre + DVec3::Y * 0.51)
-                    .moving(-DVec3::Y),
-            )
-            .unwrap();
-        pairs.push((a, b));
-    }
+    let pairs = add_head_on_pairs(&mut world);
     let stats = *world.step(1.0 / 60.0).unwrap();
-    for (a, b) in pairs {
-        // Equal masses, elastic, head-on: the velocities are exchanged.
-        assert_eq!(world.body(a).unwrap().velocity(), -DVec3::Y);
-        assert_eq!(world.body(b).unwrap().velocity(), DVec3::Y);
-    }
+    assert_exchanged(&world, &pairs);
     // The wedged ball's bounces were cut off at its share, and the step went on.
     let share = 16 * world.settings().max_collisions_per_body;
     assert!(stats.collisions >= share + 40, "{stats:?}");
@@ -70,29 +71,8 @@ fn regression_a_sphere_pressed_by_a_kinematic_one_does_not_stop_the_rest_of_the_
                 .moving(DVec3::X),
         )
         .unwrap();
-    let mut pairs = Vec::new();
-    for k in 0..40 {
-        let centre = DVec3::new(10.0 + 3.0 * k as f64, 0.0, 0.0);
-        let a = world
-            .add_sphere(
-                SphereDesc::new(0.5)
-                    .at(centre - DVec3::Y * 0.51)
-                    .moving(DVec3::Y),
-            )
-            .unwrap();
-        let b = world
-            .add_sphere(
-                SphereDesc::new(0.5)
-                    .at(centre + DVec3::Y * 0.51)
-                    .moving(-DVec3::Y),
-            )
-            .unwrap();
-        pairs.push((a, b));
-    }
+    let pairs = add_head_on_pairs(&mut world);
     let stats = *world.step(1.0 / 60.0).unwrap();
-    for (a, b) in pairs {
-        assert_eq!(world.body(a).unwrap().velocity(), -DVec3::Y);
-        assert_eq!(world.body(b).unwrap().velocity(), DVec3::Y);
-    }
+    assert_exchanged(&world, &pairs);
     assert!(stats.collisions_deferred > 0, "{stats:?}");
 }

@@ -17,16 +17,20 @@ use crate::response::{GroupContact, resolve, resolve_simultaneous};
 use crate::{Body, Collision, Integrator, Settings, StepStats, Tether, TimeOfImpact};
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
-/// Only what pair tests read, so the event loop's random reads stay small; the rest of a
-/// body's step state is its [`Extra`].
+/// Only what pair tests read, in one cache line, so the event loop's random reads stay small;
+/// the rest of a body's step state (its inverse mass among it) is its [`Extra`].
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 struct Segment {
-    t0: f64,
     position: DVec3,
     velocity: DVec3,
-    inverse_mass: f64,
-    radius: f64,
+    t0: f64,
+    /// The radius, negated for a fixed body: pair tests skip fixed pairs without reading the
+    /// body's [`Extra`], and the flag costs no byte.
+    signed_radius: f64,
 }
+
+const _: () = assert!(size_of::<Segment>() == 64, "a Segment is one cache line");
 
 /// The rest of a body's step state, kept in body order (read at impacts and at the end):
 /// one cache line. A body on a string has its string's state apart, in a [`Strung`].
@@ -34,7 +38,7 @@ struct Segment {
 #[repr(C, align(64))]
 struct Extra {
     acceleration: DVec3,
-    kick_after: DVec3,
+    inverse_mass: f64,
     restitution: f64,
     /// The body's id (records name bodies without reading the body array).
     id: crate::BodyId,
@@ -68,7 +72,11 @@ impl Segment {
     }
 
     fn is_fixed(&self) -> bool {
-        self.inverse_mass == 0.0
+        self.signed_radius.is_sign_negative()
+    }
+
+    fn radius(&self) -> f64 {
+        self.signed_radius.abs()
     }
 }
 
@@ -148,6 +156,8 @@ pub(crate) struct Solver {
     segments: Vec<Segment>,
     /// Each body's [`Extra`], in body order: segment `k`'s is `extras[order[k]]`.
     extras: Vec<Extra>,
+    /// Each body's velocity kick after the drift, in body order (read only at the end).
+    kicks_after: Vec<DVec3>,
     /// The string states that [`Extra::string`] points to.
     strung: Vec<Strung>,
     /// Whether any body hangs on a string this step.
@@ -307,6 +317,9 @@ struct RestingContact {
     b: u32,
     normal: DVec3,
     impulse: f64,
+    /// The bodies' inverse masses (kept here: the solve sweeps over the contacts many times).
+    inverse_mass_a: f64,
+    inverse_mass_b: f64,
     /// The separating speed to reach: enough to undo, over the step, an overlap deeper than
     /// the creep allowance (0 for the usual contact, within it).
     bias: f64,
@@ -348,6 +361,7 @@ impl Solver {
         self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
         self.extras.clear();
+        self.kicks_after.clear();
         self.strung.clear();
         self.boxes.clear();
         let mut dynamic = 0u32;
@@ -384,16 +398,20 @@ impl Solver {
                 t0: 0.0,
                 position: body.position(),
                 velocity,
-                inverse_mass: body.inverse_mass(),
-                radius: body.radius(),
+                signed_radius: if body.is_fixed() {
+                    -body.radius()
+                } else {
+                    body.radius()
+                },
             };
             if !(segment.position_at(dt).is_finite() && (velocity + kicks.1).is_finite()) {
                 overflow = overflow.or(Some(index));
             }
             self.boxes.push(swept_box(&segment, dt, settings));
             self.segments.push(segment);
+            self.kicks_after.push(kicks.1);
             self.extras.push(Extra {
-                kick_after: kicks.1,
+                inverse_mass: body.inverse_mass(),
                 acceleration,
                 restitution: body.restitution(),
                 id: body.id(),
@@ -541,15 +559,15 @@ impl Solver {
         }
         let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
         let mut strung = self.strung.iter().peekable();
-        for (index, ((body, extra), &p)) in bodies
+        for (index, ((body, kick_after), &p)) in bodies
             .iter_mut()
-            .zip(&self.extras)
+            .zip(&self.kicks_after)
             .zip(&self.position_of)
             .enumerate()
         {
             let segment = &self.segments[p as usize];
             let mut position = segment.position_at(dt);
-            let mut velocity = segment.velocity + extra.kick_after;
+            let mut velocity = segment.velocity + *kick_after;
             if let Some(string) = strung.next_if(|s| s.body as usize == index) {
                 (position, velocity) = taut(position, velocity, string.tether);
             }
@@ -574,7 +592,7 @@ impl Solver {
             .iter()
             .map(|&(i, j)| {
                 let (i, j) = (i as usize, j as usize);
-                let reach = self.segments[i].radius + self.segments[j].radius;
+                let reach = self.segments[i].radius() + self.segments[j].radius();
                 reach - (self.finals[j] - self.finals[i]).length()
             })
             .fold(0.0, f64::max);
@@ -664,7 +682,7 @@ impl Solver {
             return false;
         }
         let d = sj.position - si.position;
-        let reach = si.radius + sj.radius;
+        let reach = si.radius() + sj.radius();
         let band = contact_band(reach, settings);
         let distance_squared = d.length_squared();
         if distance_squared > (reach + band) * (reach + band) || distance_squared == 0.0 {
@@ -687,6 +705,8 @@ impl Solver {
             b: j as u32,
             normal,
             impulse: 0.0,
+            inverse_mass_a: self.extra(i).inverse_mass,
+            inverse_mass_b: self.extra(j).inverse_mass,
             bias,
         });
         true
@@ -720,7 +740,7 @@ impl Solver {
                 let k = if sweep % 2 == 0 { k } else { count - 1 - k };
                 let c = &mut self.resting[k];
                 let (a, b) = (c.a as usize, c.b as usize);
-                let (ima, imb) = (self.segments[a].inverse_mass, self.segments[b].inverse_mass);
+                let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
                 let speed =
                     (self.segments[b].velocity - self.segments[a].velocity).dot(c.normal) - c.bias;
                 let next = (c.impulse - speed / (ima + imb)).max(0.0);
@@ -749,7 +769,7 @@ impl Solver {
                 self.extra(b).id,
                 ctx.start_time,
                 c.normal,
-                sa.position + c.normal * sa.radius,
+                sa.position + c.normal * sa.radius(),
                 c.impulse,
                 true,
             ));
@@ -893,7 +913,8 @@ impl Solver {
             let strung = self.strung(k).copied();
             let segment = &mut self.segments[k];
             segment.advance_to(t);
-            self.local_inverse_masses.push(segment.inverse_mass);
+            self.local_inverse_masses
+                .push(self.extras[self.order[k] as usize].inverse_mass);
             let mut velocity = match strung {
                 // Bent for later, slack now: it moves freely.
                 Some(strung) if strung.taut && !taut => strung.free_velocity,
@@ -989,7 +1010,7 @@ impl Solver {
                 self.extra(b).id,
                 ctx.start_time + t,
                 c.normal,
-                sa.position + c.normal * sa.radius,
+                sa.position + c.normal * sa.radius(),
                 impulse,
                 resting,
             ));
@@ -1022,7 +1043,7 @@ impl Solver {
             // move apart (either time-of-impact method would say so, after a square root).
             return;
         }
-        let reach = si.radius + sj.radius;
+        let reach = si.radius() + sj.radius();
         if self.creep_scale > 0.0 && d.length_squared() <= (reach * (1.0 + 1e-6)).powi(2) {
             // Touching and closing slower than the creep speed: left to the next step's resting
             // solve, rather than chased through a pile contact by contact.
@@ -1039,14 +1060,14 @@ impl Solver {
             Some(custom) => custom.time_of_impact(
                 d,
                 w,
-                si.radius + sj.radius,
+                si.radius() + sj.radius(),
                 ctx.dt - t,
                 ctx.settings.tolerance,
             ),
             None => ctx.settings.method.time_of_impact(
                 d,
                 w,
-                si.radius + sj.radius,
+                si.radius() + sj.radius(),
                 ctx.dt - t,
                 ctx.settings.tolerance,
             ),
@@ -1096,26 +1117,20 @@ impl Solver {
         }
         let normal = d / distance;
         let (restitution, resting) = self.restitution(a, b, normal, ctx.settings);
-        let mut r = resolve(
-            sa.inverse_mass,
-            sb.inverse_mass,
-            sa.velocity,
-            sb.velocity,
-            normal,
-            restitution,
-        );
+        let (ima, imb) = (self.extra(a).inverse_mass, self.extra(b).inverse_mass);
+        let mut r = resolve(ima, imb, sa.velocity, sb.velocity, normal, restitution);
         if resting {
             // Keep undoing an overlap deeper than the allowance, as the step's resting solve
             // began to: stopping the pair dead here would cancel that and let a pressed pile
             // sink a little every step.
-            let reach = sa.radius + sb.radius;
+            let reach = sa.radius() + sb.radius();
             let band = contact_band(reach, ctx.settings);
             let press = pressing(self.extra(a), self.extra(b), normal);
             let bias = self.correction(reach - distance, band, press, ctx);
             if bias > 0.0 {
-                let extra = bias / (sa.inverse_mass + sb.inverse_mass);
-                r.velocity_a -= normal * (extra * sa.inverse_mass);
-                r.velocity_b += normal * (extra * sb.inverse_mass);
+                let extra = bias / (ima + imb);
+                r.velocity_a -= normal * (extra * ima);
+                r.velocity_b += normal * (extra * imb);
                 r.impulse += extra;
             }
         }
@@ -1131,7 +1146,7 @@ impl Solver {
             self.extra(b).id,
             ctx.start_time + t,
             normal,
-            sa.position + normal * sa.radius,
+            sa.position + normal * sa.radius(),
             r.impulse,
             resting,
         ));
@@ -1303,20 +1318,16 @@ fn ball_meets_box(fixed: &Segment, other: &Segment, ctx: &StepContext<'_>) -> bo
         return true;
     }
     let b = swept_box(other, ctx.dt, ctx.settings);
-    let margin = ctx.settings.tolerance.epsilon() * (1.0 + 2.0 * fixed.radius);
+    let margin = ctx.settings.tolerance.epsilon() * (1.0 + 2.0 * fixed.radius());
     // A hair larger, so rounding never drops a touching pair.
-    let radius = (fixed.radius + margin) * (1.0 + 1e-12);
+    let radius = (fixed.radius() + margin) * (1.0 + 1e-12);
     let closest = fixed.position.clamp(b.lo, b.hi);
     (closest - fixed.position).length_squared() <= radius * radius
 }
 
 /// The box a segment sweeps over the rest of the step, grown by the contact tolerance.
 fn swept_box(segment: &Segment, dt: f64, settings: &Settings) -> Aabb {
-    let margin = settings.tolerance.epsilon() * (1.0 + 2.0 * segment.radius);
-    Aabb::swept(
-        segment.position,
-        segment.position_at(dt),
-        segment.radius,
-        margin,
-    )
+    let radius = segment.radius();
+    let margin = settings.tolerance.epsilon() * (1.0 + 2.0 * radius);
+    Aabb::swept(segment.position, segment.position_at(dt), radius, margin)
 }

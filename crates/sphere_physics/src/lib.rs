@@ -59,4 +59,6 @@ pub use scene::{SceneDesc, SceneError, SphereSpec};
 pub use stats::{Collision, StepStats};
 pub use toi::{Bisection, ExactToi, TimeOfImpact, ToiMethod, ToiOutcome};
 pub use tolerance::Tolerance;
-pub use world::{MAX_BISECTION_ITERATIONS, MAX_SUBSTEPS, Settings, World, WorldError};
+pub use world::{
+    MAX_BISECTION_ITERATIONS, MAX_COLLISIONS_PER_BODY, MAX_SUBSTEPS, Settings, World, WorldError,
+};

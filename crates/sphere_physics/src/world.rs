@@ -49,6 +49,7 @@ pub struct Settings {
     /// more than 16 times this in one step (so that a sphere caught between fixed ones, which
     /// bounces between them without end, cannot spend the whole budget); collisions beyond
     /// either are deferred to the next step and counted in [`StepStats::collisions_deferred`].
+    /// Default 64, at most [`MAX_COLLISIONS_PER_BODY`].
     pub max_collisions_per_body: u32,
 }
 
@@ -71,6 +72,10 @@ impl Default for Settings {
 /// The most substeps a step may be split into.
 pub const MAX_SUBSTEPS: u32 = 65_536;
 
+/// The largest [`Settings::max_collisions_per_body`]: a sphere wedged between fixed ones then
+/// takes at most about a million collisions in a step (each one recorded), not billions.
+pub const MAX_COLLISIONS_PER_BODY: u32 = 65_536;
+
 /// The most bisection iterations: after 64 halvings an f64 interval cannot shrink further.
 pub const MAX_BISECTION_ITERATIONS: u32 = 64;
 
@@ -78,7 +83,7 @@ impl Settings {
     /// Checks every field (the fields are public, and settings also come from files): gravity
     /// finite, tolerance finite in `[0, 0.5)`, `resting_factor` finite and `>= 0`,
     /// `creep_fraction` in `[0, 1]`, `substeps` at most [`MAX_SUBSTEPS`],
-    /// `max_collisions_per_body` at least 1, and bisection at most [`MAX_BISECTION_ITERATIONS`]
+    /// `max_collisions_per_body` from 1 to [`MAX_COLLISIONS_PER_BODY`], and bisection at most [`MAX_BISECTION_ITERATIONS`]
     /// iterations. [`World::step`] checks them first and changes nothing if one is wrong.
     pub fn validate(&self) -> Result<(), WorldError> {
         let bad = |field, value: String, reason| {
@@ -113,6 +118,10 @@ impl Settings {
         }
         if self.max_collisions_per_body == 0 {
             return bad("max_collisions_per_body", "0".into(), "must be at least 1");
+        }
+        if self.max_collisions_per_body > MAX_COLLISIONS_PER_BODY {
+            let value = format!("{}", self.max_collisions_per_body);
+            return bad("max_collisions_per_body", value, "must be at most 65536");
         }
         if let ToiMethod::Bisection { max_iterations } = self.method
             && max_iterations > MAX_BISECTION_ITERATIONS
@@ -193,6 +202,9 @@ pub struct World {
     steps: u64,
     stats: StepStats,
     solver: Solver,
+    /// Every body's position and velocity before a step of several substeps: a later
+    /// substep that is refused puts them back (kept to reuse its buffer).
+    rollback: Vec<(DVec3, DVec3)>,
 }
 
 impl World {
@@ -366,6 +378,11 @@ impl World {
             });
         }
         self.solver.collisions.clear();
+        self.rollback.clear();
+        if substeps > 1 {
+            self.rollback
+                .extend(self.bodies.iter().map(|b| (b.position(), b.velocity())));
+        }
         for k in 0..substeps {
             let ctx = StepContext {
                 settings: &self.settings,
@@ -375,6 +392,13 @@ impl World {
                 start_time: self.time + f64::from(k) * sub_dt,
             };
             if let Err(index) = self.solver.step(&mut self.bodies, &ctx, &mut stats) {
+                // The refused substep wrote nothing back; undo the substeps before it, and
+                // drop the step's records.
+                for (body, &(position, velocity)) in self.bodies.iter_mut().zip(&self.rollback) {
+                    body.desc.position = position;
+                    body.desc.velocity = velocity;
+                }
+                self.solver.collisions.clear();
                 let body = &self.bodies[index];
                 return Err(WorldError::Body(BodyError {
                     body: label(body.desc.name.as_deref(), body.id),

@@ -228,9 +228,10 @@ pub enum Field {
     Tether,
 }
 
-impl fmt::Display for Field {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
+impl Field {
+    /// The field's name, as scene files spell it.
+    pub fn name(self) -> &'static str {
+        match self {
             Field::Position => "position",
             Field::Velocity => "velocity",
             Field::Radius => "radius",
@@ -238,7 +239,13 @@ impl fmt::Display for Field {
             Field::Restitution => "restitution",
             Field::Force => "force",
             Field::Tether => "tether",
-        })
+        }
+    }
+}
+
+impl fmt::Display for Field {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 

@@ -208,6 +208,23 @@ impl Checked {
         }
     }
 
+    /// The spheres' shared density and restitution, checked as a world checks each sphere, so
+    /// that a bad one names this generator and the field rather than a sphere's index.
+    fn material(
+        &self,
+        radius: f64,
+        density: f64,
+        restitution: Option<f64>,
+    ) -> Result<(), GenerateError> {
+        let mut probe = crate::SphereDesc::new(radius).with_density(density);
+        if let Some(restitution) = restitution {
+            probe = probe.with_restitution(restitution);
+        }
+        probe
+            .validate(String::new)
+            .map_err(|e| self.err(e.field.name(), format!("{}, got {}", e.reason, e.value)))
+    }
+
     fn lattice(
         &self,
         count: u32,
@@ -228,6 +245,26 @@ impl Checked {
             ));
         }
         let lattice = Lattice::new(min, max, radius);
+        // Far from the origin an f64 resolves positions only coarsely: neighbouring spheres
+        // would round onto each other. Ask for positions resolved to a millionth of the radius.
+        for (&start, &cells) in min.iter().zip(&lattice.counts) {
+            let end = start + cells as f64 * lattice.cell;
+            let (field, far) = if start.abs() >= end.abs() {
+                ("min", start.abs())
+            } else {
+                ("max", end.abs())
+            };
+            if far * f64::EPSILON > 1e-6 * radius {
+                return Err(self.err(
+                    field,
+                    format!(
+                        "is too far from the origin for spheres of radius {radius}: positions \
+                         {far:e} from it are resolved only to {:e}",
+                        far * f64::EPSILON
+                    ),
+                ));
+            }
+        }
         if u64::from(count) > lattice.capacity() {
             return Err(self.err(
                 "count",
@@ -295,6 +332,7 @@ impl Generator {
                 restitution,
             } => {
                 let lattice = check.lattice(count, min, max, radius)?;
+                check.material(radius, density, restitution)?;
                 check.finite("velocity", &velocity)?;
                 let mut rng = SplitMix64(seed);
                 let picked = cells(count, lattice.capacity(), &mut rng);
@@ -326,6 +364,7 @@ impl Generator {
                 wall_radius,
             } => {
                 let lattice = check.lattice(count, min, max, radius)?;
+                check.material(radius, density, restitution)?;
                 if !(speed.is_finite() && speed >= 0.0) {
                     return Err(check.err("speed", format!("must be finite and >= 0, got {speed}")));
                 }

@@ -1,0 +1,77 @@
+//! Regression: a generator's bad density or restitution was reported against a sphere's index
+//! (`sphere #6: density ...`), naming neither the generator nor its field; and a generator's
+//! box far from the origin put neighbouring spheres on the same rounded coordinates (at 1e16 m
+//! the f64 spacing is 2 m), so spheres were made inside one another. Found by review.
+
+use sphere_physics::generate::Generator;
+use sphere_physics::{SceneDesc, SceneError};
+
+fn generator_error(ron: &str) -> (usize, &'static str, &'static str) {
+    match SceneDesc::from_ron(ron).unwrap().build() {
+        Err(SceneError::Generate(e)) => (e.index, e.kind, e.field),
+        other => panic!("expected a generator error, got {other:?}"),
+    }
+}
+
+#[test]
+fn regression_a_generators_bad_density_or_restitution_names_the_generator() {
+    let floor =
+        r#"spheres: [(name: "floor", position: (0.0, 0.0, 0.0), radius: 1.0, fixed: true)]"#;
+    let first =
+        "Shower(count: 5, seed: 1, min: (-1.0, 2.0, -1.0), max: (1.0, 3.0, 1.0), radius: 0.1)";
+    for (second, expected) in [
+        (
+            "Shower(count: 5, seed: 1, min: (-1.0, 4.0, -1.0), max: (1.0, 5.0, 1.0), radius: 0.1, density: -1.0)",
+            (1, "Shower", "density"),
+        ),
+        (
+            "Gas(count: 5, seed: 1, min: (-1.0, 4.0, -1.0), max: (1.0, 5.0, 1.0), radius: 0.1, speed: 1.0, restitution: Some(2.0))",
+            (1, "Gas", "restitution"),
+        ),
+        (
+            // A mass that overflows.
+            "Gas(count: 5, seed: 1, min: (-1.0, 4.0, -1.0), max: (1.0, 5.0, 1.0), radius: 0.1, speed: 1.0, density: 1e308)",
+            (1, "Gas", "density"),
+        ),
+    ] {
+        let ron = format!(r#"(name: "g", {floor}, generate: [{first}, {second}])"#);
+        assert_eq!(generator_error(&ron), expected, "{second}");
+    }
+}
+
+#[test]
+fn regression_a_generator_box_too_far_from_the_origin_is_refused() {
+    let far = Generator::Shower {
+        count: 3,
+        seed: 1,
+        min: [1e16, 0.0, 0.0],
+        max: [1e16 + 4.0, 1.1, 1.1],
+        radius: 0.5,
+        velocity: [0.0; 3],
+        density: 1.0,
+        restitution: None,
+    };
+    let error = far.spheres().unwrap_err();
+    assert_eq!((error.kind, error.field), ("Shower", "max"), "{error}");
+    assert!(error.reason.contains("too far from the origin"), "{error}");
+    // A box as far out as a millionth of the radius allows still generates, apart.
+    let near = Generator::Shower {
+        count: 3,
+        seed: 1,
+        min: [1e9, 0.0, 0.0],
+        max: [1e9 + 4.0, 1.1, 1.1],
+        radius: 0.5,
+        velocity: [0.0; 3],
+        density: 1.0,
+        restitution: None,
+    };
+    let spheres = near.spheres().unwrap();
+    for (i, a) in spheres.iter().enumerate() {
+        for b in &spheres[i + 1..] {
+            let d: f64 = (0..3)
+                .map(|k| (a.position[k] - b.position[k]).powi(2))
+                .sum();
+            assert!(d.sqrt() >= 1.0 - 1e-6, "{a:?} {b:?}");
+        }
+    }
+}

@@ -116,9 +116,10 @@ pub fn method_name(method: &ToiMethod) -> String {
 
 fn parse_seconds(flag: &str, text: &str) -> Result<f64, UsageError> {
     match text.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        // Normal: a subnormal step (or a last step that short) is refused by the world.
+        Ok(v) if v.is_normal() && v > 0.0 => Ok(v),
         _ => Err(usage(format!(
-            "{flag} must be a finite number of seconds > 0, got '{text}'"
+            "{flag} must be a finite, normal number of seconds > 0, got '{text}'"
         ))),
     }
 }

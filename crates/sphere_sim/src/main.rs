@@ -62,6 +62,14 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
     // Check the whole scene before creating any file.
     scene.build().map_err(bad_input)?;
     if let Output::File(path) = &args.output
+        && path.is_dir()
+    {
+        return Err(bad_input(format!(
+            "--output {}: is a folder, not a file",
+            path.display()
+        )));
+    }
+    if let Output::File(path) = &args.output
         && let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
         && !dir.is_dir()
     {

@@ -33,6 +33,17 @@ pub enum PlayError {
     /// The world refused a step.
     #[error("{0}")]
     World(#[from] WorldError),
+    /// The world refused a step part-way through the run (a sphere would leave the finite
+    /// range, say): which step, and when.
+    #[error("step {step} (from t = {time} s): {error}")]
+    Step {
+        /// The refused step, counting from 1.
+        step: u64,
+        /// The simulated time it started from.
+        time: f64,
+        /// Why it was refused.
+        error: WorldError,
+    },
     /// The duration needs too many steps.
     #[error(
         "--duration {duration} at --dt {dt} needs {steps} steps, more than the limit of {MAX_STEPS}"
@@ -226,7 +237,12 @@ pub fn play(
     for index in 0..planned {
         let step_dt = if index < plan.full { dt } else { plan.last };
         let started = Instant::now();
-        let stats = *world.step(step_dt)?;
+        let time = world.time();
+        let stats = *world.step(step_dt).map_err(|error| PlayError::Step {
+            step: index + 1,
+            time,
+            error,
+        })?;
         stepping += started.elapsed();
         totals.0 += u64::from(stats.collisions);
         totals.1 += u64::from(stats.resting_contacts);

@@ -400,3 +400,51 @@ fn tethered_cradle_swings_for_a_minute() {
         assert!(s < 1e-6 * speed, "{name} at {s}");
     }
 }
+
+/// Regression (found by review): a subnormal duration was blamed on the time step, an output
+/// path naming a folder was found only after the whole run, and a step refused part-way gave
+/// no step or time.
+#[test]
+fn regression_subnormal_flags_output_folders_and_refused_steps_are_named() {
+    let scene = assets().join("two_spheres.ron");
+    let scene = scene.to_str().unwrap();
+    assert_bad_input(
+        &["run", scene, "--duration", "1e-310"],
+        &["--duration", "1e-310", "normal"],
+    );
+    assert_bad_input(
+        &["run", scene, "--duration", "1", "--dt", "5e-324"],
+        &["--dt", "5e-324"],
+    );
+    let folder = scratch("a_folder");
+    std::fs::create_dir_all(&folder).unwrap();
+    assert_bad_input(
+        &[
+            "run",
+            scene,
+            "--duration",
+            "1",
+            "--output",
+            folder.to_str().unwrap(),
+        ],
+        &["--output", "is a folder"],
+    );
+    // The first 1 s step takes the sphere to x = 1e308; the second would overflow.
+    let runaway = write_scene(
+        "runaway.ron",
+        r#"(name: "runaway", spheres: [
+            (name: "rocket", position: (0.0, 0.0, 0.0), velocity: (1e308, 0.0, 0.0), radius: 0.5),
+        ])"#,
+    );
+    assert_bad_input(
+        &[
+            "run",
+            runaway.to_str().unwrap(),
+            "--duration",
+            "3",
+            "--dt",
+            "1",
+        ],
+        &["step 2", "t = 1 s", "'rocket'"],
+    );
+}

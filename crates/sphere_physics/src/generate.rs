@@ -134,12 +134,22 @@ impl SplitMix64 {
         ((self.next_u64() as u128 * n as u128) >> 64) as u64
     }
 
-    /// Uniform on the unit sphere.
+    /// Uniform on the unit sphere, by arithmetic and one square root only, which IEEE 754
+    /// rounds the same everywhere (`sin` and `cos` come from the platform's maths library, whose
+    /// last bits differ between systems): a point uniform in the cube, kept if it lies inside
+    /// the ball and not within 0.01 of its centre, scaled out to the sphere.
     fn direction(&mut self) -> [f64; 3] {
-        let z = 2.0 * self.unit() - 1.0;
-        let phi = std::f64::consts::TAU * self.unit();
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        [r * phi.cos(), r * phi.sin(), z]
+        loop {
+            let x = 2.0 * self.unit() - 1.0;
+            let y = 2.0 * self.unit() - 1.0;
+            let z = 2.0 * self.unit() - 1.0;
+            let p = [x, y, z];
+            let s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+            if (1e-4..=1.0).contains(&s) {
+                let length = s.sqrt();
+                return p.map(|c| c / length);
+            }
+        }
     }
 }
 

@@ -43,8 +43,9 @@ pub struct SphereHit {
     pub resting: bool,
 }
 
-/// A sphere left out of the simulation because a component is invalid: which entity, which
-/// field, which value. Written once each time its components are found invalid.
+/// A sphere left out of the simulation because a component is invalid (or because its motion
+/// would leave the finite range within a step): which entity, which field, which value.
+/// Written at `Prepare`, once each time its components are found invalid.
 #[derive(Message, Clone, Debug, PartialEq)]
 pub struct SphereRejected {
     /// The sphere.

@@ -10,7 +10,12 @@
 //!
 //! What game systems may do, and what happens:
 //! - **Despawn a sphere** (or remove [`SphereBody`]): it leaves the simulation at the next fixed
-//!   step; collisions already reported stay reported.
+//!   step; collisions already reported stay reported. An entity kept without its
+//!   `SphereBody` gets its `Transform` back: the plugin stops writing it.
+//! - **Disable a sphere** (Bevy's `Disabled`): it leaves the simulation at the next fixed step
+//!   and joins again, from where it was, once enabled.
+//! - **Remove a component a sphere was spawned with** ([`SphereVelocity`], [`Density`],
+//!   [`AppliedForce`], `Transform`): the sphere takes that component's default (no force, say).
 //! - **Change a component** ([`SphereVelocity`], [`SphereBody::radius`], [`Density`],
 //!   [`Restitution`], [`AppliedForce`], [`SpherePosition`] to teleport, [`FixedSphere`],
 //!   [`Tethered`]): applied at the next fixed step's `Prepare`. Writing `Transform` does
@@ -18,7 +23,12 @@
 //! - **Invalid values** (radius ≤ 0, NaN, restitution outside `[0, 1]`, a sphere beyond its
 //!   string): the sphere is left out of the simulation, a [`SphereRejected`] message and a
 //!   warning name the entity, the field and the value, and [`RejectedSphere`] is put on it;
-//!   it joins once its components are valid. Nothing panics.
+//!   it joins once its components are valid. Nothing panics. A sphere whose motion would leave
+//!   the finite range within a step (1e308 m/s) is rejected the same way, and the step taken
+//!   without it. A step the core refuses for any other reason (settings out of range) is
+//!   skipped, logged and counted in [`SpherePhysicsDiagnostics::refused_steps`].
+//! - **Place a tethered sphere by its `Transform`** at its string's length: `f32` rounding that
+//!   puts it a hair outside the string is undone.
 //! - **Spawn into an occupied place**: spheres that overlap and approach are pushed apart by
 //!   the collision response at once; overlapping spheres at rest stay as they are (the core
 //!   never moves a sphere except along its velocity), so spawn them apart.

@@ -8,7 +8,7 @@ use sphere_physics::{IntegratorKind, Settings, ToiMethod, Tolerance, World};
 use crate::components::*;
 use crate::events::{SphereCollision, SphereRejected};
 use crate::resources::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
-use crate::systems::{self, PluginOptions, RemovedSpheres, Stepped};
+use crate::systems::{self, PluginOptions, RemovedSpheres, RunawaySpheres, Stepped};
 
 /// The plugin's stages in [`FixedUpdate`], chained in this order. Put a game's systems
 /// `.before(..)` or `.after(..)` any of them, e.g. apply thrust before `Prepare` or read
@@ -116,6 +116,7 @@ impl Plugin for SpherePhysicsPlugin {
             .init_resource::<SpherePhysicsDiagnostics>()
             .init_resource::<Stepped>()
             .init_resource::<RemovedSpheres>()
+            .init_resource::<RunawaySpheres>()
             .add_observer(systems::record_removal)
             .add_message::<SphereCollision>()
             .add_message::<SphereRejected>()

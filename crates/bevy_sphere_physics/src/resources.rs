@@ -1,5 +1,7 @@
 //! Resources: the core world, the physics clock (pause, single step) and diagnostics.
 
+use std::collections::HashMap;
+
 use bevy::ecs::entity::EntityHashMap;
 use bevy::prelude::*;
 use sphere_physics::{BodyId, StepStats, World};
@@ -11,7 +13,9 @@ pub struct SpherePhysicsWorld {
     /// The core world.
     pub world: World,
     pub(crate) bodies: EntityHashMap<BodyId>,
-    pub(crate) entities: Vec<Option<Entity>>,
+    /// Each body's entity (a map: body ids are never reused, so a table indexed by id would
+    /// grow with every sphere ever spawned).
+    pub(crate) entities: HashMap<BodyId, Entity>,
 }
 
 impl SpherePhysicsWorld {
@@ -19,7 +23,7 @@ impl SpherePhysicsWorld {
         Self {
             world,
             bodies: EntityHashMap::default(),
-            entities: Vec::new(),
+            entities: HashMap::new(),
         }
     }
 
@@ -30,7 +34,7 @@ impl SpherePhysicsWorld {
 
     /// The entity of a body.
     pub fn entity(&self, body: BodyId) -> Option<Entity> {
-        self.entities.get(body.index()).copied().flatten()
+        self.entities.get(&body).copied()
     }
 }
 
@@ -84,6 +88,9 @@ pub struct SpherePhysicsDiagnostics {
     pub step_seconds: f64,
     /// Spheres in the simulation.
     pub bodies: usize,
+    /// Fixed steps the core refused for a reason no one sphere could be blamed for (settings
+    /// out of range, a zero time step): skipped, and logged once per distinct reason.
+    pub refused_steps: u64,
 }
 
 /// A command that empties the simulation and restarts its clock: the core world is replaced by

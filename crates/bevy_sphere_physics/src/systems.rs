@@ -3,9 +3,10 @@
 
 use std::time::Instant;
 
+use bevy::ecs::entity_disabling::Disabled;
 use bevy::math::DVec3;
 use bevy::prelude::*;
-use sphere_physics::{Body, SphereDesc, Tether};
+use sphere_physics::{Body, SphereDesc, Tether, WorldError};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereHit, SphereRejected};
@@ -28,20 +29,28 @@ pub(crate) fn record_removal(removed: On<Remove, SphereBody>, mut queue: ResMut<
     queue.0.push(removed.entity);
 }
 
+/// Spheres the last `Step` left out (they would have left the finite range), reported by the
+/// next `Prepare`: `SphereRejected` messages are all written there, so a game system that
+/// reads them needs no order against `Step`.
+#[derive(Resource, Debug, Default)]
+pub(crate) struct RunawaySpheres(pub Vec<SphereRejected>);
+
 /// Whether the last fixed step stepped the physics (false while paused).
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Stepped(pub bool);
 
-/// The components of one sphere, as the core sees them.
+/// The components of one sphere, as the core sees them. Those a sphere is spawned with by
+/// default are optional here: a game that removes one (its force, say) means its default, and
+/// the sphere must not drop out of view while its body keeps the old value.
 type SphereQuery<'a> = (
     Entity,
     &'a SphereBody,
-    &'a Transform,
+    Option<&'a Transform>,
     Option<&'a SpherePosition>,
-    &'a SphereVelocity,
-    &'a Density,
+    Option<&'a SphereVelocity>,
+    Option<&'a Density>,
     Option<&'a Restitution>,
-    &'a AppliedForce,
+    Option<&'a AppliedForce>,
     Has<FixedSphere>,
     Option<&'a Tethered>,
     Option<&'a RejectedSphere>,
@@ -65,22 +74,45 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions) -> SphereDesc {
         name,
         _,
     ) = item;
+    let tether = tether.map(|t| Tether {
+        anchor: t.anchor,
+        length: t.length,
+    });
+    let position = match (position, transform) {
+        (Some(p), _) => p.0,
+        (None, Some(transform)) => on_string(transform.translation.as_dvec3(), tether),
+        (None, None) => DVec3::ZERO,
+    };
     SphereDesc {
         name: Some(match name {
             Some(name) => format!("{name} ({entity})"),
             None => format!("entity {entity}"),
         }),
-        position: position.map_or(transform.translation.as_dvec3(), |p| p.0),
-        velocity: velocity.0,
+        position,
+        velocity: velocity.map_or(DVec3::ZERO, |v| v.0),
         radius: body.radius,
-        density: density.0,
+        density: density.copied().unwrap_or_default().0,
         restitution: restitution.map_or(options.restitution, |r| r.0),
-        force: force.0,
+        force: force.map_or(DVec3::ZERO, |f| f.0),
         fixed: *fixed,
-        tether: tether.map(|t| Tether {
-            anchor: t.anchor,
-            length: t.length,
-        }),
+        tether,
+    }
+}
+
+/// A start position read from a `Transform` (single precision): a sphere placed at its
+/// string's length may have rounded to just outside it, which the core refuses; within that
+/// rounding it is put back on the string.
+fn on_string(position: DVec3, tether: Option<Tether>) -> DVec3 {
+    let Some(tether) = tether else {
+        return position;
+    };
+    let r = position - tether.anchor;
+    let distance = r.length();
+    let rounding = f64::from(f32::EPSILON) * position.abs().max_element().max(1.0);
+    if distance > tether.length && distance - tether.length <= rounding {
+        tether.anchor + r * (tether.length / distance)
+    } else {
+        position
     }
 }
 
@@ -92,11 +124,11 @@ fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool
     let (_, sphere, _, position, velocity, density, restitution, force, fixed, tether, _, _, _) =
         item;
     position.is_none_or(|p| p.0 == body.position())
-        && velocity.0 == body.velocity()
+        && velocity.map_or(DVec3::ZERO, |v| v.0) == body.velocity()
         && sphere.radius == body.radius()
-        && density.0 == body.density()
+        && density.copied().unwrap_or_default().0 == body.density()
         && restitution.map_or(options.restitution, |r| r.0) == body.restitution()
-        && force.0 == body.force()
+        && force.map_or(DVec3::ZERO, |f| f.0) == body.force()
         && *fixed == body.is_fixed()
         && tether.map(|t| (t.anchor, t.length)) == body.desc().tether.map(|t| (t.anchor, t.length))
 }
@@ -112,12 +144,28 @@ pub(crate) fn prepare(
     options: Res<PluginOptions>,
     mut rejected: MessageWriter<SphereRejected>,
     orders: Query<&SphereOrder>,
+    disabled: Query<Entity, (With<SphereBody>, With<Disabled>)>,
+    mut runaways: ResMut<RunawaySpheres>,
 ) {
     let physics = &mut *physics;
+    rejected.write_batch(runaways.0.drain(..));
     for entity in removed.0.drain(..) {
         if let Some(id) = physics.bodies.remove(&entity) {
             physics.world.remove_body(id);
-            physics.entities[id.index()] = None;
+            physics.entities.remove(&id);
+        }
+        // The entity may live on without its `SphereBody`: its `Transform` is the game's
+        // again (interpolation writes only spheres with a handle). A no-op if despawned.
+        commands
+            .entity(entity)
+            .try_remove::<(SphereHandle, SpherePosition, PreviousSpherePosition)>();
+    }
+    // Disabled spheres (Bevy's `Disabled`: hidden from every other query) leave the
+    // simulation, and join it again from where they were when enabled.
+    for entity in &disabled {
+        if let Some(id) = physics.bodies.remove(&entity) {
+            physics.world.remove_body(id);
+            physics.entities.remove(&id);
         }
     }
     let mut reject = |commands: &mut Commands, entity: Entity, desc: SphereDesc, error| {
@@ -128,7 +176,7 @@ pub(crate) fn prepare(
         });
         commands
             .entity(entity)
-            .insert(RejectedSphere { error, desc });
+            .try_insert(RejectedSphere { error, desc });
     };
     // New spheres by `SphereOrder`, then entity: ids never depend on query order.
     let mut new = Vec::new();
@@ -139,13 +187,13 @@ pub(crate) fn prepare(
         let id = item
             .12
             .map(|h| h.0)
-            .filter(|id| physics.entities.get(id.index()) == Some(&Some(entity)));
+            .filter(|id| physics.entities.get(id) == Some(&entity));
         match id.or_else(|| physics.bodies.get(&entity).copied()) {
             Some(id) => {
                 let Some(body) = physics.world.body(id) else {
                     // Removed from the core by the game: register it anew.
                     physics.bodies.remove(&entity);
-                    physics.entities[id.index()] = None;
+                    physics.entities.remove(&id);
                     new.push(entity);
                     continue;
                 };
@@ -156,8 +204,8 @@ pub(crate) fn prepare(
                 if let Err(error) = physics.world.set_desc(id, desc.clone()) {
                     physics.world.remove_body(id);
                     physics.bodies.remove(&entity);
-                    physics.entities[id.index()] = None;
-                    commands.entity(entity).remove::<SphereHandle>();
+                    physics.entities.remove(&id);
+                    commands.entity(entity).try_remove::<SphereHandle>();
                     if let sphere_physics::WorldError::Body(error) = error {
                         reject(&mut commands, entity, desc, error);
                     }
@@ -181,18 +229,15 @@ pub(crate) fn prepare(
         match physics.world.add_sphere(desc.clone()) {
             Ok(id) => {
                 physics.bodies.insert(entity, id);
-                if physics.entities.len() <= id.index() {
-                    physics.entities.resize(id.index() + 1, None);
-                }
-                physics.entities[id.index()] = Some(entity);
+                physics.entities.insert(id, entity);
                 let mut e = commands.entity(entity);
-                e.insert((
+                e.try_insert((
                     SpherePosition(desc.position),
                     PreviousSpherePosition(desc.position),
                     SphereHandle(id),
                 ));
                 if item.10.is_some() {
-                    e.remove::<RejectedSphere>();
+                    e.try_remove::<RejectedSphere>();
                 }
             }
             Err(error) => reject(&mut commands, entity, desc, error),
@@ -203,11 +248,21 @@ pub(crate) fn prepare(
 /// [`SpherePhysicsSystems::Step`](crate::SpherePhysicsSystems::Step): one core step of the fixed
 /// timestep (integration, collision detection and response happen together inside it: the
 /// core resolves collisions in time order between the integrator's kicks).
+///
+/// A step the core refuses because of one sphere (one that would leave the finite range) is
+/// taken again without it: that sphere is rejected, as an invalid one is at `Prepare` (its
+/// `SphereRejected` message is written by the next `Prepare`). A step
+/// refused for any other reason (settings out of range, a zero time step) is skipped, counted
+/// in [`SpherePhysicsDiagnostics::refused_steps`] and logged (once per distinct reason).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn step(
+    mut commands: Commands,
     mut physics: ResMut<SpherePhysicsWorld>,
     mut clock: ResMut<SpherePhysicsClock>,
     mut stepped: ResMut<Stepped>,
     mut diagnostics: ResMut<SpherePhysicsDiagnostics>,
+    mut runaways: ResMut<RunawaySpheres>,
+    mut last_refusal: Local<Option<String>>,
     time: Res<Time<Fixed>>,
 ) {
     stepped.0 = clock.take_step();
@@ -215,9 +270,50 @@ pub(crate) fn step(
         return;
     }
     let started = Instant::now();
-    let Ok(stats) = physics.world.step(time.delta_secs_f64()).copied() else {
-        stepped.0 = false;
-        return;
+    let physics = &mut *physics;
+    // Each retry leaves one sphere out, so this ends; the bound only caps one step's work.
+    let mut result = physics.world.step(time.delta_secs_f64()).copied();
+    for _ in 0..64 {
+        let Err(WorldError::Body(error)) = &result else {
+            break;
+        };
+        let Some((id, entity)) = error
+            .id
+            .and_then(|id| Some((id, physics.entities.get(&id).copied()?)))
+        else {
+            break;
+        };
+        let Some(body) = physics.world.remove_body(id) else {
+            break;
+        };
+        physics.bodies.remove(&entity);
+        physics.entities.remove(&id);
+        warn!("sphere {entity} left out of the simulation: {error}");
+        runaways.0.push(SphereRejected {
+            entity,
+            error: error.clone(),
+        });
+        commands
+            .entity(entity)
+            .try_remove::<SphereHandle>()
+            .try_insert(RejectedSphere {
+                error: error.clone(),
+                desc: body.desc().clone(),
+            });
+        result = physics.world.step(time.delta_secs_f64()).copied();
+    }
+    let stats = match result {
+        Ok(stats) => stats,
+        Err(error) => {
+            let reason = error.to_string();
+            if last_refusal.as_ref() != Some(&reason) {
+                error!("sphere physics: step refused: {reason}");
+                *last_refusal = Some(reason);
+            }
+            diagnostics.refused_steps += 1;
+            stepped.0 = false;
+            return;
+        }
     };
     *diagnostics = SpherePhysicsDiagnostics {
         last: stats,
@@ -226,6 +322,7 @@ pub(crate) fn step(
         collisions: diagnostics.collisions + u64::from(stats.collisions),
         step_seconds: started.elapsed().as_secs_f64(),
         bodies: physics.world.len(),
+        refused_steps: diagnostics.refused_steps,
     };
 }
 
@@ -238,17 +335,19 @@ pub(crate) fn writeback(
         &SphereHandle,
         &mut SpherePosition,
         &mut PreviousSpherePosition,
-        &mut SphereVelocity,
+        Option<&mut SphereVelocity>,
     )>,
 ) {
-    for (handle, mut position, mut previous, mut velocity) in &mut spheres {
+    for (handle, mut position, mut previous, velocity) in &mut spheres {
         let Some(body) = physics.world.body(handle.0) else {
             continue;
         };
         previous.0 = position.0;
         if stepped.0 {
             position.0 = body.position();
-            velocity.0 = body.velocity();
+            if let Some(mut velocity) = velocity {
+                velocity.0 = body.velocity();
+            }
         }
     }
 }

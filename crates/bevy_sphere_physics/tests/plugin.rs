@@ -499,3 +499,165 @@ fn sphere_order_decides_body_ids_whatever_the_entities() {
         .collect();
     assert_eq!(ids, vec![3, 2, 1, 0, 4]);
 }
+
+/// Regression (found by review): a sphere that would leave the finite range made the core
+/// refuse every step, silently: the whole simulation froze. Now that sphere is rejected (a
+/// `SphereRejected` message and a `RejectedSphere` component) and the rest keep stepping.
+#[test]
+fn regression_a_runaway_sphere_is_rejected_and_the_rest_keep_stepping() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Rejections>().add_systems(
+        FixedUpdate,
+        (|mut reader: MessageReader<SphereRejected>, mut seen: ResMut<Rejections>| {
+            seen.0.extend(reader.read().cloned());
+        })
+        .after(SpherePhysicsSystems::Prepare),
+    );
+    // At 1e308 m/s from x = 1.79e308, its first step would pass the largest finite f64.
+    let runaway = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(1.79e308, 0.0, 0.0)),
+            SphereVelocity(DVec3::new(1e308, 0.0, 0.0)),
+        ))
+        .id();
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::Y)))
+        .id();
+    run_steps(&mut app, 3);
+    assert!(
+        (position(&app, ball).y - 3.0 / 64.0).abs() < 1e-12,
+        "{}",
+        position(&app, ball)
+    );
+    let seen = &app.world().resource::<Rejections>().0;
+    assert_eq!(seen.len(), 1, "{seen:?}");
+    assert_eq!(
+        (seen[0].entity, seen[0].error.field),
+        (runaway, Field::Velocity)
+    );
+    assert!(app.world().get::<RejectedSphere>(runaway).is_some());
+    assert_eq!(position(&app, runaway).x, 1.79e308, "left where it was");
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+}
+
+/// Regression (found by review): a step the core refuses for a reason no sphere can be blamed
+/// for (settings out of range) was dropped without a trace; now it is counted (and logged).
+#[test]
+fn regression_refused_steps_are_counted() {
+    let mut app = app(SpherePhysicsPlugin::default().substeps(100_000));
+    app.world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)));
+    for _ in 0..10 {
+        app.update();
+    }
+    let diagnostics = app.world().resource::<SpherePhysicsDiagnostics>();
+    assert_eq!(diagnostics.steps, 0);
+    assert!(diagnostics.refused_steps > 0);
+}
+
+/// Regression (found by review): removing one of the components a sphere is spawned with
+/// (its force, density, velocity or Transform) took it out of the plugin's view while its body
+/// kept the old values: a thrust "removed" kept pushing. A missing one now means its default.
+#[test]
+fn regression_removing_a_default_component_means_its_default() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let rocket = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), AppliedForce(DVec3::X)))
+        .id();
+    run_steps(&mut app, 2);
+    app.world_mut().entity_mut(rocket).remove::<AppliedForce>();
+    app.world_mut().get_mut::<SphereVelocity>(rocket).unwrap().0 = DVec3::ZERO;
+    run_steps(&mut app, 2);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    let body = physics.world.body(physics.body(rocket).unwrap()).unwrap();
+    assert_eq!(body.force(), DVec3::ZERO);
+    assert_eq!(velocity(&app, rocket), DVec3::ZERO);
+}
+
+/// Regression (found by review): a disabled sphere (Bevy's `Disabled`, as state-scoped
+/// entities use) stayed in the simulation, invisible, and others bounced off it.
+#[test]
+fn regression_a_disabled_sphere_leaves_the_simulation_until_enabled() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let a = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(-2.0, 0.0, 0.0)),
+            SphereVelocity(DVec3::X),
+        ))
+        .id();
+    let b = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(2.0, 0.0, 0.0)),
+        ))
+        .id();
+    run_steps(&mut app, 10);
+    app.world_mut()
+        .entity_mut(b)
+        .insert(bevy::ecs::entity_disabling::Disabled);
+    run_steps(&mut app, 300); // Long past when they would have met.
+    assert_eq!(velocity(&app, a), DVec3::X, "nothing left to hit");
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+    app.world_mut()
+        .entity_mut(b)
+        .remove::<bevy::ecs::entity_disabling::Disabled>();
+    run_steps(&mut app, 1);
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 2);
+}
+
+/// Regression (found by review): after its `SphereBody` was removed (the entity kept), the
+/// plugin still wrote the entity's `Transform` every frame from its last physics positions.
+#[test]
+fn regression_removing_sphere_body_hands_the_transform_back() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let b = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 2);
+    app.world_mut().entity_mut(b).remove::<SphereBody>();
+    app.update();
+    app.world_mut()
+        .get_mut::<Transform>(b)
+        .unwrap()
+        .translation
+        .x = 100.0;
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_eq!(
+        app.world().get::<Transform>(b).unwrap().translation.x,
+        100.0
+    );
+    assert!(app.world().get::<SphereHandle>(b).is_none());
+}
+
+/// Regression (found by review): a pendulum spawned at its string's length by its `Transform`
+/// (f32) was rejected: the rounded start lies a hair outside the string.
+#[test]
+fn regression_a_taut_pendulum_placed_by_its_transform_is_accepted() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let bob = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(0.0, 0.7, 0.0),
+            Tethered {
+                anchor: DVec3::new(0.0, 2.0, 0.0),
+                length: 1.3,
+            },
+        ))
+        .id();
+    run_steps(&mut app, 1);
+    assert!(app.world().get::<RejectedSphere>(bob).is_none());
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+    let from_anchor = position(&app, bob) - DVec3::new(0.0, 2.0, 0.0);
+    assert!(from_anchor.length() <= 1.3 * (1.0 + 1e-9));
+}

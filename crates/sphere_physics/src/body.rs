@@ -138,6 +138,7 @@ impl SphereDesc {
     pub(crate) fn validate(&self, label: impl Fn() -> String) -> Result<(), BodyError> {
         let err = |field, value: f64, reason| BodyError {
             body: label(),
+            id: None,
             field,
             value,
             reason,
@@ -256,6 +257,9 @@ impl fmt::Display for Field {
 pub struct BodyError {
     /// The body's name in quotes if it has one, else its index as `#n`.
     pub body: String,
+    /// The body's id when it is in a world (a change to it, or a step it would overflow);
+    /// `None` for a sphere being added.
+    pub id: Option<crate::BodyId>,
     /// The offending field.
     pub field: Field,
     /// The offending value (one component for vectors).

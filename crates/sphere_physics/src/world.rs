@@ -274,7 +274,8 @@ impl World {
     /// Replaces a body's description (position, velocity, radius, ...), validated as on adding.
     pub fn set_desc(&mut self, id: BodyId, desc: SphereDesc) -> Result<(), WorldError> {
         let index = self.index(id)?;
-        desc.validate(|| label(desc.name.as_deref(), id))?;
+        desc.validate(|| label(desc.name.as_deref(), id))
+            .map_err(|e| BodyError { id: Some(id), ..e })?;
         self.bodies[index] = Body::new(id, desc);
         Ok(())
     }
@@ -306,6 +307,7 @@ impl World {
             let body = &self.bodies[index];
             return Err(BodyError {
                 body: label(body.name(), id),
+                id: Some(id),
                 field,
                 value: bad,
                 reason: "must be finite",
@@ -316,7 +318,8 @@ impl World {
         let body = &self.bodies[index];
         let mut desc = body.desc.clone();
         set(&mut desc, value);
-        desc.validate(|| label(body.name(), id))?;
+        desc.validate(|| label(body.name(), id))
+            .map_err(|e| BodyError { id: Some(id), ..e })?;
         self.bodies[index].desc = desc;
         Ok(())
     }
@@ -402,6 +405,7 @@ impl World {
                 let body = &self.bodies[index];
                 return Err(WorldError::Body(BodyError {
                     body: label(body.desc.name.as_deref(), body.id),
+                    id: Some(body.id),
                     field: Field::Velocity,
                     value: body.velocity().length(),
                     reason: "would take the sphere beyond the finite range within this step",

@@ -12,7 +12,6 @@
 
 use bevy::app::AppExit;
 use bevy::prelude::*;
-use bevy_sphere_physics::SpherePhysicsWorld;
 use bevy_sphere_physics::prelude::*;
 
 use crate::scenes::{ActiveScene, LabScenes};
@@ -98,7 +97,7 @@ pub(crate) fn apply_actions(
     state: Res<State<ActiveScene>>,
     mut next: ResMut<NextState<ActiveScene>>,
     mut clock: ResMut<SpherePhysicsClock>,
-    physics: Res<SpherePhysicsWorld>,
+    diagnostics: Res<SpherePhysicsDiagnostics>,
     mut shots: MessageWriter<ScreenshotRequested>,
 ) {
     for action in actions.read() {
@@ -146,8 +145,10 @@ pub(crate) fn apply_actions(
                 }
             }
             LabAction::Screenshot => {
+                // The time the spheres are drawn at (interpolated between the last two steps),
+                // not the last step's.
                 shots.write(ScreenshotRequested {
-                    time: physics.world.time(),
+                    time: diagnostics.shown_time,
                 });
             }
         }
@@ -182,7 +183,7 @@ impl Autopilot {
 pub(crate) fn autopilot(
     mut pilot: ResMut<Autopilot>,
     state: Res<State<ActiveScene>>,
-    physics: Res<SpherePhysicsWorld>,
+    diagnostics: Res<SpherePhysicsDiagnostics>,
     status: Res<ScreenshotStatus>,
     mut actions: MessageWriter<LabAction>,
     mut exit: MessageWriter<AppExit>,
@@ -198,7 +199,7 @@ pub(crate) fn autopilot(
         // A few frames first, so the window and the panels have been drawn; without a scene
         // the time stays 0 and the chooser is captured.
         let ready = ready.is_none_or(|r| r.frames >= 10);
-        let due = physics.world.time() >= at || *state.get() == ActiveScene::None;
+        let due = diagnostics.shown_time >= at || *state.get() == ActiveScene::None;
         if ready && *frames > 3 && due {
             pilot.requested = Some(outcomes);
             actions.write(LabAction::Screenshot);

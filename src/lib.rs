@@ -103,6 +103,9 @@ impl LabPlugin {
                 }
             }
         }
+        if self.autopilot.exit_after_screenshot && self.autopilot.screenshot_at.is_none() {
+            return Err("--exit quits after the --screenshot-at screenshot: give both".into());
+        }
         Ok(self)
     }
 }
@@ -174,9 +177,11 @@ struct StartScene(Option<String>);
 /// if there is none or it is unknown.
 fn open_start_scene(
     start: Res<StartScene>,
-    scenes: Res<LabScenes>,
+    mut scenes: ResMut<LabScenes>,
     mut ui: ResMut<LabUi>,
     mut next: ResMut<NextState<ActiveScene>>,
+    pilot: Res<Autopilot>,
+    mut exit: MessageWriter<AppExit>,
 ) {
     let Some(id) = &start.0 else {
         return;
@@ -187,7 +192,29 @@ fn open_start_scene(
             ui.selected = i;
             ui.chooser_open = false;
         }
-        None => warn!("no scene with id {id:?}: opening the chooser"),
+        None => {
+            // A scene file by that name that failed to load says why; else list the ids.
+            let file = format!("{id}.ron");
+            let error = match scenes.errors.iter().find(|e| e.contains(&file)) {
+                Some(failed) => format!("--scene {id:?}: {failed}"),
+                None => {
+                    let known: Vec<&str> = scenes.iter().map(|s| s.id.as_str()).collect();
+                    format!(
+                        "--scene {id:?}: no such scene (a scene file's name without .ron, one \
+                         of: {})",
+                        known.join(", ")
+                    )
+                }
+            };
+            if pilot.screenshot_at.is_some() {
+                // Unattended: a screenshot of the chooser would pass for the scene's.
+                eprintln!("{error}");
+                exit.write(AppExit::from_code(2));
+            } else {
+                warn!("{error}: opening the chooser");
+            }
+            scenes.errors.push(error);
+        }
     }
 }
 

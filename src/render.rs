@@ -342,7 +342,9 @@ fn build_stage(
 
 /// Turns screenshot requests into window captures, and captures into [`FrameCaptured`].
 fn capture_frames(mut commands: Commands, mut requests: MessageReader<ScreenshotRequested>) {
-    for request in requests.read() {
+    // One capture per frame: Bevy drops a second capture of the same window in a frame (with
+    // only a log line), and it would be the same picture anyway.
+    if let Some(request) = requests.read().last() {
         let time = request.time;
         commands.spawn(Screenshot::primary_window()).observe(
             move |captured: On<ScreenshotCaptured>,

@@ -212,11 +212,15 @@ impl LabAppExt for App {
         }
         scenes.scenes.push(scene.clone());
         let schedule = OnEnter(ActiveScene::scene(scene.id.clone()));
-        let reset = move |mut commands: Commands, mut fixed: ResMut<Time<Fixed>>| {
+        let reset = move |mut commands: Commands,
+                          mut fixed: ResMut<Time<Fixed>>,
+                          mut clock: ResMut<SpherePhysicsClock>| {
             commands.queue(
                 ResetSpherePhysics::new(scene.settings.clone()).restitution(scene.restitution),
             );
             fixed.set_timestep_seconds(scene.dt);
+            // A scene (or a restart) starts running, with no single steps left over.
+            *clock = SpherePhysicsClock::default();
         };
         self.configure_sets(
             schedule.clone(),

@@ -69,14 +69,30 @@ pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result
     std::fs::create_dir_all(folder)
         .map_err(|e| format!("cannot create folder {}: {e}", folder.display()))?;
     stamp_time(&mut image, time);
-    let path = (0..)
-        .map(|n| folder.join(format!("sphere-lab-{n:03}.png")))
-        .find(|p| !p.exists())
-        .expect("an unbounded range has a free name");
-    image
-        .save_with_format(&path, image::ImageFormat::Png)
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    Ok(path)
+    // Claim the name by creating the file (never overwriting one, even if another lab saves
+    // into the same folder at the same moment), then write into it.
+    for n in 0.. {
+        let path = folder.join(format!("sphere-lab-{n:03}.png"));
+        let file = match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&path)
+        {
+            Ok(file) => file,
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(format!("cannot create {}: {e}", path.display())),
+        };
+        let mut out = std::io::BufWriter::new(file);
+        image
+            .write_to(&mut out, image::ImageFormat::Png)
+            .and_then(|()| {
+                use std::io::Write;
+                out.flush().map_err(image::ImageError::IoError)
+            })
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        return Ok(path);
+    }
+    unreachable!("an unbounded range has a free name")
 }
 
 /// Saves captured frames and records the outcome.

@@ -105,7 +105,7 @@ fn panel(
                     "time",
                     format!(
                         "{:.3} s{}",
-                        world.time(),
+                        diagnostics.shown_time,
                         if clock.paused { " (paused)" } else { "" }
                     ),
                 );

@@ -411,6 +411,8 @@ fn command_line_flags() {
     );
     assert!(args(&["--scene"]).unwrap_err().contains("--scene"));
     assert!(args(&["--fast"]).unwrap_err().contains("--fast"));
+    // Regression (found by review): --exit alone was accepted, and the lab never quit.
+    assert!(args(&["--exit"]).unwrap_err().contains("--screenshot-at"));
 }
 
 #[test]
@@ -418,6 +420,86 @@ fn unknown_start_scene_opens_the_chooser() {
     let app = lab_with(Some("no_such_scene"));
     assert_eq!(state(&app), ActiveScene::None);
     assert!(app.world().resource::<LabUi>().chooser_open);
+    // Said in the chooser, with the ids there are (it used to be only a log line).
+    let errors = &app.world().resource::<LabScenes>().errors;
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.contains("no_such_scene") && e.contains("two_spheres")),
+        "{errors:?}"
+    );
+}
+
+/// Regression (found by review): an unattended run with an unknown --scene photographed the
+/// chooser and exited 0, as if the scene had been captured.
+#[test]
+fn regression_an_unattended_run_with_an_unknown_scene_exits_with_code_2() {
+    let mut app = lab(LabPlugin {
+        scene_folder: Some(scene_folder()),
+        start: Some("gas_bx".into()),
+        autopilot: Autopilot::new(Some(1.0), true),
+        ..default()
+    });
+    app.update();
+    assert_eq!(app.should_exit(), Some(AppExit::from_code(2)));
+}
+
+/// Regression (found by review): a scene loaded (or restarted) while paused opened frozen.
+#[test]
+fn regression_a_scene_loaded_while_paused_starts_running() {
+    let mut app = lab_with(Some("two_spheres"));
+    press(&mut app, KeyCode::KeyP);
+    assert!(app.world().resource::<SpherePhysicsClock>().paused);
+    app.world_mut()
+        .write_message(LabAction::Load("newtons_cradle".into()));
+    app.update();
+    app.update();
+    assert_eq!(state(&app), ActiveScene::scene("newtons_cradle"));
+    assert_eq!(
+        *app.world().resource::<SpherePhysicsClock>(),
+        SpherePhysicsClock::default()
+    );
+    let before = sim_time(&app);
+    app.update();
+    app.update();
+    assert!(sim_time(&app) > before);
+}
+
+/// Regression (found by review): the screenshot was stamped with the last physics step's time
+/// while the spheres are drawn between the last two steps (interpolated): up to one step
+/// (16.7 ms) ahead of the picture.
+#[test]
+fn regression_a_screenshot_is_stamped_with_the_time_the_spheres_are_drawn_at() {
+    let mut app = lab_with(Some("two_spheres"));
+    // Frames of 1/90 s against 1/60 s steps: the drawn time falls between steps.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+        1.0 / 90.0,
+    )));
+    for _ in 0..40 {
+        app.update();
+    }
+    let mut cursor = app
+        .world()
+        .resource::<Messages<ScreenshotRequested>>()
+        .get_cursor_current();
+    app.world_mut().write_message(LabAction::Screenshot);
+    app.update();
+    let requests: Vec<ScreenshotRequested> = cursor
+        .read(app.world().resource::<Messages<ScreenshotRequested>>())
+        .copied()
+        .collect();
+    assert_eq!(requests.len(), 1);
+    let stamped = requests[0].time;
+    assert!(stamped < sim_time(&app), "{stamped} vs {}", sim_time(&app));
+    // Sphere "a" starts at x = -2 moving at 1 m/s (it meets "b" at t = 1.5 s): its Transform
+    // shows it where it is at the stamped time.
+    let mut q = app.world_mut().query::<(&Name, &Transform)>();
+    let a = q
+        .iter(app.world())
+        .find(|(name, _)| name.as_str() == "a")
+        .map(|(_, t)| t.translation.x)
+        .unwrap();
+    assert!((f64::from(a) - (-2.0 + stamped)).abs() < 1e-5, "{a} at {stamped}");
 }
 
 #[derive(Component)]

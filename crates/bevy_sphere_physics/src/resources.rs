@@ -63,6 +63,8 @@ impl SpherePhysicsClock {
     /// Whether the next fixed step should step the physics (and uses up a pending step).
     pub(crate) fn take_step(&mut self) -> bool {
         if !self.paused {
+            // Steps asked for while paused are not kept for the next pause.
+            self.pending_steps = 0;
             return true;
         }
         if self.pending_steps > 0 {
@@ -88,6 +90,10 @@ pub struct SpherePhysicsDiagnostics {
     pub step_seconds: f64,
     /// Spheres in the simulation.
     pub bodies: usize,
+    /// The simulated time the spheres' `Transform`s show: between the last two steps'
+    /// times when they are interpolated (see `SpherePhysicsPlugin::interpolate`), else the
+    /// last step's. What a screenshot of this frame should be stamped with.
+    pub shown_time: f64,
     /// Fixed steps the core refused for a reason no one sphere could be blamed for (settings
     /// out of range, a zero time step): skipped, and logged once per distinct reason.
     pub refused_steps: u64,

@@ -322,6 +322,7 @@ pub(crate) fn step(
         collisions: diagnostics.collisions + u64::from(stats.collisions),
         step_seconds: started.elapsed().as_secs_f64(),
         bodies: physics.world.len(),
+        shown_time: diagnostics.shown_time,
         refused_steps: diagnostics.refused_steps,
     };
 }
@@ -390,10 +391,13 @@ pub(crate) fn notify(
 }
 
 /// After the fixed steps of a frame: each sphere's `Transform` between its last two physics
-/// positions, by how far the fixed clock has run into the next step.
+/// positions, by how far the fixed clock has run into the next step (and the simulated time
+/// that shows, in [`SpherePhysicsDiagnostics::shown_time`]).
 pub(crate) fn interpolate(
     time: Res<Time<Fixed>>,
     options: Res<PluginOptions>,
+    stepped: Res<Stepped>,
+    mut diagnostics: ResMut<SpherePhysicsDiagnostics>,
     mut spheres: Query<
         (
             &SpherePosition,
@@ -405,6 +409,16 @@ pub(crate) fn interpolate(
     >,
 ) {
     let fraction = time.overstep_fraction_f64();
+    // The previous positions are the last step's start (or, when it did not step, its end).
+    let shown = if options.interpolate && stepped.0 {
+        diagnostics.time - (1.0 - fraction) * diagnostics.last.dt
+    } else {
+        diagnostics.time
+    };
+    diagnostics.set_if_neq(SpherePhysicsDiagnostics {
+        shown_time: shown,
+        ..*diagnostics
+    });
     for (position, previous, mut transform, opted_out) in &mut spheres {
         let at: DVec3 = if options.interpolate && !opted_out {
             previous.0.lerp(position.0, fraction)

@@ -499,7 +499,10 @@ fn regression_a_screenshot_is_stamped_with_the_time_the_spheres_are_drawn_at() {
         .find(|(name, _)| name.as_str() == "a")
         .map(|(_, t)| t.translation.x)
         .unwrap();
-    assert!((f64::from(a) - (-2.0 + stamped)).abs() < 1e-5, "{a} at {stamped}");
+    assert!(
+        (f64::from(a) - (-2.0 + stamped)).abs() < 1e-5,
+        "{a} at {stamped}"
+    );
 }
 
 #[derive(Component)]

@@ -97,7 +97,7 @@ pub(crate) fn apply_actions(
     state: Res<State<ActiveScene>>,
     mut next: ResMut<NextState<ActiveScene>>,
     mut clock: ResMut<SpherePhysicsClock>,
-    diagnostics: Res<SpherePhysicsDiagnostics>,
+    shown: Res<SphereShownTime>,
     mut shots: MessageWriter<ScreenshotRequested>,
 ) {
     for action in actions.read() {
@@ -147,9 +147,7 @@ pub(crate) fn apply_actions(
             LabAction::Screenshot => {
                 // The time the spheres are drawn at (interpolated between the last two steps),
                 // not the last step's.
-                shots.write(ScreenshotRequested {
-                    time: diagnostics.shown_time,
-                });
+                shots.write(ScreenshotRequested { time: shown.0 });
             }
         }
     }
@@ -183,7 +181,7 @@ impl Autopilot {
 pub(crate) fn autopilot(
     mut pilot: ResMut<Autopilot>,
     state: Res<State<ActiveScene>>,
-    diagnostics: Res<SpherePhysicsDiagnostics>,
+    shown: Res<SphereShownTime>,
     status: Res<ScreenshotStatus>,
     mut actions: MessageWriter<LabAction>,
     mut exit: MessageWriter<AppExit>,
@@ -199,7 +197,7 @@ pub(crate) fn autopilot(
         // A few frames first, so the window and the panels have been drawn; without a scene
         // the time stays 0 and the chooser is captured.
         let ready = ready.is_none_or(|r| r.frames >= 10);
-        let due = diagnostics.shown_time >= at || *state.get() == ActiveScene::None;
+        let due = shown.0 >= at || *state.get() == ActiveScene::None;
         if ready && *frames > 3 && due {
             pilot.requested = Some(outcomes);
             actions.write(LabAction::Screenshot);

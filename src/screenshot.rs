@@ -89,7 +89,11 @@ pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result
                 use std::io::Write;
                 out.flush().map_err(image::ImageError::IoError)
             })
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            .map_err(|e| {
+                // Leave no broken file among the screenshots.
+                let _ = std::fs::remove_file(&path);
+                format!("cannot write {}: {e}", path.display())
+            })?;
         return Ok(path);
     }
     unreachable!("an unbounded range has a free name")

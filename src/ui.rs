@@ -4,7 +4,9 @@
 
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
-use bevy_sphere_physics::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
+use bevy_sphere_physics::{
+    SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld, SphereShownTime,
+};
 
 use crate::controls::{LabAction, LabUi};
 use crate::scenes::{ActiveScene, LabScenes};
@@ -79,6 +81,7 @@ fn panel(
     state: Res<State<ActiveScene>>,
     physics: Res<SpherePhysicsWorld>,
     diagnostics: Res<SpherePhysicsDiagnostics>,
+    shown: Res<SphereShownTime>,
     clock: Res<SpherePhysicsClock>,
     status: Res<ScreenshotStatus>,
     mut actions: MessageWriter<LabAction>,
@@ -105,7 +108,7 @@ fn panel(
                     "time",
                     format!(
                         "{:.3} s{}",
-                        diagnostics.shown_time,
+                        shown.0,
                         if clock.paused { " (paused)" } else { "" }
                     ),
                 );

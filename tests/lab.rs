@@ -430,6 +430,25 @@ fn unknown_start_scene_opens_the_chooser() {
     );
 }
 
+/// An unknown --scene that names a scene left out (a bad step) says why, not "no such scene".
+#[test]
+fn a_start_scene_that_was_left_out_says_why() {
+    let mut app = lab(LabPlugin {
+        scene_folder: None,
+        start: Some("zero".into()),
+        ..default()
+    });
+    app.add_lab_scene(LabScene::new("zero", "Zero", "dt 0").dt(0.0), || {});
+    app.update();
+    let errors = &app.world().resource::<LabScenes>().errors;
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.starts_with("--scene \"zero\"") && e.contains("dt")),
+        "{errors:?}"
+    );
+}
+
 /// Regression (found by review): an unattended run with an unknown --scene photographed the
 /// chooser and exited 0, as if the scene had been captured.
 #[test]

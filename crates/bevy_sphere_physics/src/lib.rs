@@ -49,6 +49,7 @@ pub use events::{SphereCollision, SphereHit, SphereRejected};
 pub use plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
 pub use resources::{
     ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld,
+    SphereShownTime,
 };
 pub use sphere_physics;
 
@@ -57,6 +58,8 @@ pub mod prelude {
     pub use crate::components::*;
     pub use crate::events::{SphereCollision, SphereHit, SphereRejected};
     pub use crate::plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
-    pub use crate::resources::{ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics};
+    pub use crate::resources::{
+        ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics, SphereShownTime,
+    };
     pub use bevy::math::DVec3;
 }

@@ -7,7 +7,9 @@ use sphere_physics::{IntegratorKind, Settings, ToiMethod, Tolerance, World};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereRejected};
-use crate::resources::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
+use crate::resources::{
+    SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld, SphereShownTime,
+};
 use crate::systems::{self, PluginOptions, RemovedSpheres, RunawaySpheres, Stepped};
 
 /// The plugin's stages in [`FixedUpdate`], chained in this order. Put a game's systems
@@ -114,6 +116,7 @@ impl Plugin for SpherePhysicsPlugin {
             })
             .init_resource::<SpherePhysicsClock>()
             .init_resource::<SpherePhysicsDiagnostics>()
+            .init_resource::<SphereShownTime>()
             .init_resource::<Stepped>()
             .init_resource::<RemovedSpheres>()
             .init_resource::<RunawaySpheres>()

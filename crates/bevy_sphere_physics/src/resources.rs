@@ -90,14 +90,19 @@ pub struct SpherePhysicsDiagnostics {
     pub step_seconds: f64,
     /// Spheres in the simulation.
     pub bodies: usize,
-    /// The simulated time the spheres' `Transform`s show: between the last two steps'
-    /// times when they are interpolated (see `SpherePhysicsPlugin::interpolate`), else the
-    /// last step's. What a screenshot of this frame should be stamped with.
-    pub shown_time: f64,
     /// Fixed steps the core refused for a reason no one sphere could be blamed for (settings
     /// out of range, a zero time step): skipped, and logged once per distinct reason.
     pub refused_steps: u64,
 }
+
+/// The simulated time the spheres' `Transform`s show this frame: between the last two steps'
+/// times when they are interpolated (see `SpherePhysicsPlugin::interpolate`), else the last
+/// step's. What a screenshot of this frame should be stamped with. (A sphere with
+/// [`NoInterpolation`](crate::NoInterpolation) is drawn at the last step's time instead.)
+/// Its own resource, written after the fixed steps of every frame, so that
+/// [`SpherePhysicsDiagnostics`] changes only when the physics steps.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+pub struct SphereShownTime(pub f64);
 
 /// A command that empties the simulation and restarts its clock: the core world is replaced by
 /// a new one with `settings`, diagnostics start again from zero, and spheres still spawned
@@ -155,6 +160,11 @@ impl Command for ResetSpherePhysics {
             stepped.0 = false;
         }
         world.insert_resource(SpherePhysicsDiagnostics::default());
+        world.insert_resource(SphereShownTime::default());
+        if let Some(mut runaways) = world.get_resource_mut::<crate::systems::RunawaySpheres>() {
+            // Spheres of the old world: not to be reported after the reset.
+            runaways.0.clear();
+        }
         if let (Some(restitution), Some(mut options)) = (
             self.restitution,
             world.get_resource_mut::<crate::systems::PluginOptions>(),

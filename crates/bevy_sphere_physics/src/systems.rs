@@ -10,7 +10,9 @@ use sphere_physics::{Body, SphereDesc, Tether, WorldError};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereHit, SphereRejected};
-use crate::resources::{SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld};
+use crate::resources::{
+    SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld, SphereShownTime,
+};
 
 /// Plugin-wide options the systems read.
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
@@ -58,7 +60,10 @@ type SphereQuery<'a> = (
     Option<&'a SphereHandle>,
 );
 
-fn describe(item: &SphereQueryItem, options: &PluginOptions) -> SphereDesc {
+/// The description `item`'s components give. A body's state (its position and velocity) whose
+/// component is missing keeps `current`'s value (none yet: the origin, at rest): that state is
+/// the plugin's output, and a game that removes the component has not asked for it to change.
+fn describe(item: &SphereQueryItem, options: &PluginOptions, current: Option<&Body>) -> SphereDesc {
     let (
         entity,
         body,
@@ -78,10 +83,11 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions) -> SphereDesc {
         anchor: t.anchor,
         length: t.length,
     });
-    let position = match (position, transform) {
-        (Some(p), _) => p.0,
-        (None, Some(transform)) => on_string(transform.translation.as_dvec3(), tether),
-        (None, None) => DVec3::ZERO,
+    let position = match (position, current, transform) {
+        (Some(p), _, _) => p.0,
+        (None, Some(body), _) => body.position(),
+        (None, None, Some(transform)) => on_string(transform.translation.as_dvec3(), tether),
+        (None, None, None) => DVec3::ZERO,
     };
     SphereDesc {
         name: Some(match name {
@@ -89,7 +95,7 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions) -> SphereDesc {
             None => format!("entity {entity}"),
         }),
         position,
-        velocity: velocity.map_or(DVec3::ZERO, |v| v.0),
+        velocity: velocity.map_or(current.map_or(DVec3::ZERO, Body::velocity), |v| v.0),
         radius: body.radius,
         density: density.copied().unwrap_or_default().0,
         restitution: restitution.map_or(options.restitution, |r| r.0),
@@ -124,7 +130,7 @@ fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool
     let (_, sphere, _, position, velocity, density, restitution, force, fixed, tether, _, _, _) =
         item;
     position.is_none_or(|p| p.0 == body.position())
-        && velocity.map_or(DVec3::ZERO, |v| v.0) == body.velocity()
+        && velocity.is_none_or(|v| v.0 == body.velocity())
         && sphere.radius == body.radius()
         && density.copied().unwrap_or_default().0 == body.density()
         && restitution.map_or(options.restitution, |r| r.0) == body.restitution()
@@ -200,7 +206,7 @@ pub(crate) fn prepare(
                 if matches(body, &item, &options) {
                     continue;
                 }
-                let desc = describe(&item, &options);
+                let desc = describe(&item, &options, Some(body));
                 if let Err(error) = physics.world.set_desc(id, desc.clone()) {
                     physics.world.remove_body(id);
                     physics.bodies.remove(&entity);
@@ -217,7 +223,7 @@ pub(crate) fn prepare(
     new.sort_unstable_by_key(|&e| (orders.get(e).map_or(u64::MAX, |o| o.0), e));
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
-        let desc = describe(&item, &options);
+        let desc = describe(&item, &options, None);
         // Still the same invalid description (compared as text, so NaN equals NaN): already
         // reported.
         if item
@@ -277,17 +283,20 @@ pub(crate) fn step(
         let Err(WorldError::Body(error)) = &result else {
             break;
         };
-        let Some((id, entity)) = error
-            .id
-            .and_then(|id| Some((id, physics.entities.get(&id).copied()?)))
-        else {
+        let Some(id) = error.id else {
             break;
         };
         let Some(body) = physics.world.remove_body(id) else {
             break;
         };
+        let Some(entity) = physics.entities.remove(&id) else {
+            // A body the game added to the core directly: out too, or every step would be
+            // refused.
+            warn!("body {id} (no entity) left out of the simulation: {error}");
+            result = physics.world.step(time.delta_secs_f64()).copied();
+            continue;
+        };
         physics.bodies.remove(&entity);
-        physics.entities.remove(&id);
         warn!("sphere {entity} left out of the simulation: {error}");
         runaways.0.push(SphereRejected {
             entity,
@@ -322,7 +331,6 @@ pub(crate) fn step(
         collisions: diagnostics.collisions + u64::from(stats.collisions),
         step_seconds: started.elapsed().as_secs_f64(),
         bodies: physics.world.len(),
-        shown_time: diagnostics.shown_time,
         refused_steps: diagnostics.refused_steps,
     };
 }
@@ -392,12 +400,13 @@ pub(crate) fn notify(
 
 /// After the fixed steps of a frame: each sphere's `Transform` between its last two physics
 /// positions, by how far the fixed clock has run into the next step (and the simulated time
-/// that shows, in [`SpherePhysicsDiagnostics::shown_time`]).
+/// that shows, in [`SphereShownTime`]).
 pub(crate) fn interpolate(
     time: Res<Time<Fixed>>,
     options: Res<PluginOptions>,
     stepped: Res<Stepped>,
-    mut diagnostics: ResMut<SpherePhysicsDiagnostics>,
+    diagnostics: Res<SpherePhysicsDiagnostics>,
+    mut shown: ResMut<SphereShownTime>,
     mut spheres: Query<
         (
             &SpherePosition,
@@ -410,15 +419,12 @@ pub(crate) fn interpolate(
 ) {
     let fraction = time.overstep_fraction_f64();
     // The previous positions are the last step's start (or, when it did not step, its end).
-    let shown = if options.interpolate && stepped.0 {
+    let time_shown = if options.interpolate && stepped.0 {
         diagnostics.time - (1.0 - fraction) * diagnostics.last.dt
     } else {
         diagnostics.time
     };
-    diagnostics.set_if_neq(SpherePhysicsDiagnostics {
-        shown_time: shown,
-        ..*diagnostics
-    });
+    shown.set_if_neq(SphereShownTime(time_shown));
     for (position, previous, mut transform, opted_out) in &mut spheres {
         let at: DVec3 = if options.interpolate && !opted_out {
             previous.0.lerp(position.0, fraction)

@@ -661,3 +661,53 @@ fn regression_a_taut_pendulum_placed_by_its_transform_is_accepted() {
     let from_anchor = position(&app, bob) - DVec3::new(0.0, 2.0, 0.0);
     assert!(from_anchor.length() <= 1.3 * (1.0 + 1e-9));
 }
+
+/// Regression (found by review): a sphere whose `SphereVelocity` was removed was set back to
+/// rest at every step (a missing component was read as zero while the core's velocity was not
+/// written back to it): its velocity is the core's, as its position is without
+/// `SpherePosition`.
+#[test]
+fn regression_removing_sphere_velocity_keeps_the_motion() {
+    let g = DVec3::new(0.0, -9.81, 0.0);
+    let mut app = app(SpherePhysicsPlugin::default().gravity(g));
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), Transform::from_xyz(0.0, 100.0, 0.0)))
+        .id();
+    run_steps(&mut app, 1);
+    app.world_mut().entity_mut(ball).remove::<SphereVelocity>();
+    run_steps(&mut app, 63);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    let body = physics.world.body(physics.body(ball).unwrap()).unwrap();
+    // One second of free fall: 9.81 m/s (semi-implicit Euler gets the speed exactly).
+    assert!(
+        (body.velocity().y + 9.81).abs() < 1e-9,
+        "{}",
+        body.velocity()
+    );
+    assert!(position(&app, ball).y < 96.0);
+}
+
+/// Regression (found by review): a runaway body the game had added to the core directly (no
+/// entity) made every step be refused for good.
+#[test]
+fn regression_a_runaway_body_without_an_entity_is_removed_too() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::Y)))
+        .id();
+    run_steps(&mut app, 1);
+    app.world_mut()
+        .resource_mut::<SpherePhysicsWorld>()
+        .world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(1.79e308, 0.0, 0.0))
+                .moving(DVec3::new(1e308, 0.0, 0.0)),
+        )
+        .unwrap();
+    run_steps(&mut app, 2);
+    assert!((position(&app, ball).y - 3.0 / 64.0).abs() < 1e-12);
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+}

@@ -1,10 +1,9 @@
-//! Regression: a shell of spheres landing at one instant on one central sphere makes one
-//! simultaneous group of as many impacts as spheres, all sharing the central sphere. Such a
-//! group was solved with a search of its bodies per impact (quadratic in its size: 0.41 s for
-//! a 40 000-sphere shell's step on a fixed sphere, 0.35 s on a heavy dynamic one, measured),
-//! and impacts sharing only a fixed sphere were solved as one group though they are
-//! independent (a fixed sphere's velocity never changes). Now 0.08 s and 0.11 s. Found by
-//! review; these tests check the physics at that size (timing is the benchmarks' job).
+//! A shell of spheres landing at one instant on one central sphere: one simultaneous group of
+//! 40 000 impacts, all sharing the central sphere. The physics at that size: every ball bounces
+//! straight back off a fixed sphere, and off a heavy dynamic one momentum and energy are kept.
+//! (Such a group used to be solved in time quadratic in its size: 0.41 s for this step on a
+//! fixed sphere, 0.35 s on a heavy one; 0.08 s and 0.11 s since. Timing is the benchmarks'
+//! job: `cargo bench -p sphere_bench -- simultaneous`. Found by review.)
 
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -38,7 +37,7 @@ fn shell(centre: SphereDesc) -> (World, Vec<DVec3>) {
 }
 
 #[test]
-fn regression_a_shell_landing_at_one_instant_on_a_fixed_sphere_bounces_exactly() {
+fn a_shell_landing_at_one_instant_on_a_fixed_sphere_bounces_exactly() {
     let (mut world, directions) = shell(SphereDesc::new(10.0).fixed());
     let stats = *world.step(1.0 / 60.0).unwrap();
     assert_eq!(stats.collisions as usize, BALLS);
@@ -50,7 +49,7 @@ fn regression_a_shell_landing_at_one_instant_on_a_fixed_sphere_bounces_exactly()
 }
 
 #[test]
-fn regression_a_shell_landing_at_one_instant_on_a_heavy_ball_keeps_momentum_and_energy() {
+fn a_shell_landing_at_one_instant_on_a_heavy_ball_keeps_momentum_and_energy() {
     let (mut world, _) = shell(SphereDesc::new(10.0).with_density(1e3));
     let (momentum, energy) = (world.momentum(), world.kinetic_energy());
     let stats = *world.step(1.0 / 60.0).unwrap();

@@ -203,6 +203,14 @@ pub(crate) fn prepare(
                     new.push(entity);
                     continue;
                 };
+                if item.3.is_none() {
+                    // Its `SpherePosition` was removed: the plugin's output, put back (the body
+                    // stays where the core has it).
+                    commands.entity(entity).try_insert((
+                        SpherePosition(body.position()),
+                        PreviousSpherePosition(body.position()),
+                    ));
+                }
                 if matches(body, &item, &options) {
                     continue;
                 }

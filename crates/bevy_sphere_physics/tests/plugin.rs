@@ -686,6 +686,12 @@ fn regression_removing_sphere_velocity_keeps_the_motion() {
         body.velocity()
     );
     assert!(position(&app, ball).y < 96.0);
+    // Its position component removed: put back, and the fall goes on.
+    app.world_mut().entity_mut(ball).remove::<SpherePosition>();
+    run_steps(&mut app, 2);
+    let y = position(&app, ball).y;
+    run_steps(&mut app, 1);
+    assert!(position(&app, ball).y < y);
 }
 
 /// Regression (found by review): a runaway body the game had added to the core directly (no

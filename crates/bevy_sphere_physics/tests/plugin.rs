@@ -211,24 +211,24 @@ fn transforms_are_interpolated_between_fixed_steps() {
     assert_eq!(f64::from(jumped), position(&app, jumping).x as f32 as f64);
 }
 
+/// Sphere `a` at x = -2 moving at 1 m/s towards `b`, at rest at x = 2: they meet at t = 3 s.
+fn head_on_pair(app: &mut App) -> (Entity, Entity) {
+    let mut spawn = |x: f64, v: DVec3| {
+        app.world_mut()
+            .spawn((
+                SphereBody::new(0.5),
+                SpherePosition(DVec3::new(x, 0.0, 0.0)),
+                SphereVelocity(v),
+            ))
+            .id()
+    };
+    (spawn(-2.0, DVec3::X), spawn(2.0, DVec3::ZERO))
+}
+
 #[test]
 fn despawning_a_sphere_mid_simulation_removes_it() {
     let mut app = app(SpherePhysicsPlugin::default());
-    let a = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.5),
-            SpherePosition(DVec3::new(-2.0, 0.0, 0.0)),
-            SphereVelocity(DVec3::X),
-        ))
-        .id();
-    let b = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.5),
-            SpherePosition(DVec3::new(2.0, 0.0, 0.0)),
-        ))
-        .id();
+    let (a, b) = head_on_pair(&mut app);
     run_steps(&mut app, 10);
     app.world_mut().despawn(b);
     run_steps(&mut app, 300); // Long past when they would have met.
@@ -245,9 +245,8 @@ fn despawning_a_sphere_mid_simulation_removes_it() {
 #[derive(Resource, Default)]
 struct Rejections(Vec<SphereRejected>);
 
-#[test]
-fn invalid_components_are_reported_and_left_out_until_fixed() {
-    let mut app = app(SpherePhysicsPlugin::default());
+/// Gathers every `SphereRejected` message into [`Rejections`].
+fn collect_rejections(app: &mut App) {
     app.init_resource::<Rejections>().add_systems(
         FixedUpdate,
         (|mut reader: MessageReader<SphereRejected>, mut seen: ResMut<Rejections>| {
@@ -255,6 +254,12 @@ fn invalid_components_are_reported_and_left_out_until_fixed() {
         })
         .after(SpherePhysicsSystems::Prepare),
     );
+}
+
+#[test]
+fn invalid_components_are_reported_and_left_out_until_fixed() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    collect_rejections(&mut app);
     let bad = app
         .world_mut()
         .spawn((SphereBody::new(-1.0), Name::new("flat")))
@@ -506,13 +511,7 @@ fn sphere_order_decides_body_ids_whatever_the_entities() {
 #[test]
 fn regression_a_runaway_sphere_is_rejected_and_the_rest_keep_stepping() {
     let mut app = app(SpherePhysicsPlugin::default());
-    app.init_resource::<Rejections>().add_systems(
-        FixedUpdate,
-        (|mut reader: MessageReader<SphereRejected>, mut seen: ResMut<Rejections>| {
-            seen.0.extend(reader.read().cloned());
-        })
-        .after(SpherePhysicsSystems::Prepare),
-    );
+    collect_rejections(&mut app);
     // At 1e308 m/s from x = 1.79e308, its first step would pass the largest finite f64.
     let runaway = app
         .world_mut()
@@ -583,21 +582,7 @@ fn regression_removing_a_default_component_means_its_default() {
 #[test]
 fn regression_a_disabled_sphere_leaves_the_simulation_until_enabled() {
     let mut app = app(SpherePhysicsPlugin::default());
-    let a = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.5),
-            SpherePosition(DVec3::new(-2.0, 0.0, 0.0)),
-            SphereVelocity(DVec3::X),
-        ))
-        .id();
-    let b = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.5),
-            SpherePosition(DVec3::new(2.0, 0.0, 0.0)),
-        ))
-        .id();
+    let (a, b) = head_on_pair(&mut app);
     run_steps(&mut app, 10);
     app.world_mut()
         .entity_mut(b)

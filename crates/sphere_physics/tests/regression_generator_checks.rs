@@ -41,31 +41,22 @@ fn regression_a_generators_bad_density_or_restitution_names_the_generator() {
 
 #[test]
 fn regression_a_generator_box_too_far_from_the_origin_is_refused() {
-    let far = Generator::Shower {
+    // Three spheres of radius 0.5 in a row along x, from `x` on.
+    let row_at = |x: f64| Generator::Shower {
         count: 3,
         seed: 1,
-        min: [1e16, 0.0, 0.0],
-        max: [1e16 + 4.0, 1.1, 1.1],
+        min: [x, 0.0, 0.0],
+        max: [x + 4.0, 1.1, 1.1],
         radius: 0.5,
         velocity: [0.0; 3],
         density: 1.0,
         restitution: None,
     };
-    let error = far.spheres().unwrap_err();
+    let error = row_at(1e16).spheres().unwrap_err();
     assert_eq!((error.kind, error.field), ("Shower", "max"), "{error}");
     assert!(error.reason.contains("too far from the origin"), "{error}");
     // A box as far out as a millionth of the radius allows still generates, apart.
-    let near = Generator::Shower {
-        count: 3,
-        seed: 1,
-        min: [1e9, 0.0, 0.0],
-        max: [1e9 + 4.0, 1.1, 1.1],
-        radius: 0.5,
-        velocity: [0.0; 3],
-        density: 1.0,
-        restitution: None,
-    };
-    let spheres = near.spheres().unwrap();
+    let spheres = row_at(1e9).spheres().unwrap();
     for (i, a) in spheres.iter().enumerate() {
         for b in &spheres[i + 1..] {
             let d: f64 = (0..3)

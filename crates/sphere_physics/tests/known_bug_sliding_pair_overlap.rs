@@ -9,13 +9,13 @@
 //! sphere's own acceleration (gravity along the line of centres), not by what the dome's push
 //! adds on a curved slope.
 
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+mod common;
 
 #[test]
 #[ignore = "known bug: a pair sliding together on a curved fixed sphere overlaps past the creep bound"]
 fn a_pair_sliding_down_a_big_fixed_sphere_stays_within_the_creep_bound() {
     // (velocity x, y, z, radius, density, restitution, jitter), as the property draws them.
-    let spheres: Vec<(f64, f64, f64, f64, f64, f64, f64)> = vec![
+    let spheres: Vec<common::Drop> = vec![
         (0.0, 0.0, 0.0, 0.1, 0.5, 0.0, 0.0),
         (0.0, 0.0, 0.0, 0.1, 0.5, 0.0, 0.0),
         (0.0, 0.0, 0.0, 0.1, 0.5, 0.0, 0.0),
@@ -685,24 +685,8 @@ fn a_pair_sliding_down_a_big_fixed_sphere_stays_within_the_creep_bound() {
         ),
     ];
     let dt = 0.011379555716841797;
-    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-    world
-        .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
-        .unwrap();
-    for (i, &(vx, vy, vz, r, rho, e, jitter)) in spheres.iter().enumerate() {
-        let grid = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
-        world
-            .add_sphere(
-                SphereDesc::new(r)
-                    .at(grid + DVec3::splat(jitter * 0.5))
-                    .moving(DVec3::new(vx, vy, vz))
-                    .with_density(rho)
-                    .with_restitution(e),
-            )
-            .unwrap();
-    }
-    let settings = world.settings().clone();
-    let creep = settings.creep_fraction * settings.resting_factor * 9.81 * dt * dt;
+    let mut world = common::rain_on_a_dome(&spheres);
+    let creep = common::creep(&world, dt);
     for step in 0..60 {
         let overlap = world.step(dt).unwrap().max_overlap;
         assert!(

@@ -1,4 +1,6 @@
 //! Invariants on random scenes: momentum conserved, no NaN, no overlap, energy never gained.
+mod common;
+
 use proptest::prelude::*;
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -62,20 +64,8 @@ proptest! {
     /// on a level of its own; none may be missed, so overlap stays within the creep bound.
     #[test]
     fn rain_on_a_big_fixed_sphere(spheres in scene(), dt in 0.005..0.05f64) {
-        let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-        world.add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed()).unwrap();
-        for (i, &(vx, vy, vz, r, rho, e, jitter)) in spheres.iter().enumerate() {
-            let grid = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
-            world.add_sphere(
-                SphereDesc::new(r)
-                    .at(grid + DVec3::splat(jitter * 0.5))
-                    .moving(DVec3::new(vx, vy, vz))
-                    .with_density(rho)
-                    .with_restitution(e),
-            ).unwrap();
-        }
-        let settings = world.settings().clone();
-        let creep = settings.creep_fraction * settings.resting_factor * 9.81 * dt * dt;
+        let mut world = common::rain_on_a_dome(&spheres);
+        let creep = common::creep(&world, dt);
         for _ in 0..60 {
             let stats = *world.step(dt).unwrap();
             prop_assert!(world.bodies().iter().all(|b| b.position().is_finite() && b.velocity().is_finite()));

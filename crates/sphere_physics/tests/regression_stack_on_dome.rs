@@ -14,6 +14,8 @@
 //! step's resting solve had given it: the overlap crept to 2.3 times the creep distance. Now a
 //! resting impact keeps that separating speed.
 
+mod common;
+
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
 const G: f64 = 9.81;
@@ -69,7 +71,7 @@ fn a_column_on_a_dome_stays_up() {
 
 /// The shrunk input of `properties::rain_on_a_big_fixed_sphere` that failed: (velocity,
 /// radius, density, restitution, jitter) per sphere, placed on the property test's lattice.
-const RAIN: &[(f64, f64, f64, f64, f64, f64, f64)] = &[
+const RAIN: &[common::Drop] = &[
     (0.0, 0.0, 0.0, 0.1, 0.5, 0.0, 0.0),
     (0.0, 0.0, 0.0, 0.1, 0.5, 0.0, 0.0),
     (0.0, 0.0, 0.0, 0.1, 0.5, 0.0, 0.0),
@@ -566,24 +568,8 @@ const RAIN: &[(f64, f64, f64, f64, f64, f64, f64)] = &[
 #[test]
 fn a_ball_landed_on_while_sliding_over_a_dome_stays_out() {
     let dt = 0.01601543105480778;
-    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -G, 0.0)));
-    world
-        .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
-        .unwrap();
-    for (i, &(vx, vy, vz, r, rho, e, jitter)) in RAIN.iter().enumerate() {
-        let lattice = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
-        world
-            .add_sphere(
-                SphereDesc::new(r)
-                    .at(lattice + DVec3::splat(jitter * 0.5))
-                    .moving(DVec3::new(vx, vy, vz))
-                    .with_density(rho)
-                    .with_restitution(e),
-            )
-            .unwrap();
-    }
-    let settings = world.settings().clone();
-    let creep = settings.creep_fraction * settings.resting_factor * G * dt * dt;
+    let mut world = common::rain_on_a_dome(RAIN);
+    let creep = common::creep(&world, dt);
     for step in 0..300 {
         let stats = *world.step(dt).unwrap();
         assert!(

@@ -1,0 +1,37 @@
+//! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
+//! cases it found.
+
+use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+
+/// One sphere as the property draws it: velocity (x, y, z), radius, density, restitution, and
+/// a jitter along (1, 1, 1).
+pub type Drop = (f64, f64, f64, f64, f64, f64, f64);
+
+/// Spheres on a lattice of spacing 1 (five by five per layer), one per drop, above a fixed
+/// sphere of radius 3 at (2, -3.6, 1), under gravity 9.81 m/s².
+pub fn rain_on_a_dome(drops: &[Drop]) -> World {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world
+        .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
+        .unwrap();
+    for (i, &(vx, vy, vz, r, rho, e, jitter)) in drops.iter().enumerate() {
+        let lattice = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
+        world
+            .add_sphere(
+                SphereDesc::new(r)
+                    .at(lattice + DVec3::splat(jitter * 0.5))
+                    .moving(DVec3::new(vx, vy, vz))
+                    .with_density(rho)
+                    .with_restitution(e),
+            )
+            .unwrap();
+    }
+    world
+}
+
+/// How far a resting pair may sink into each other in one step of `dt` under that gravity
+/// (the creep allowance); the property allows twice this.
+pub fn creep(world: &World, dt: f64) -> f64 {
+    let settings = world.settings();
+    settings.creep_fraction * settings.resting_factor * 9.81 * dt * dt
+}

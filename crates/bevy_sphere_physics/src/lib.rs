@@ -14,8 +14,10 @@
 //!   `SphereBody` gets its `Transform` back: the plugin stops writing it.
 //! - **Disable a sphere** (Bevy's `Disabled`): it leaves the simulation at the next fixed step
 //!   and joins again, from where it was, once enabled.
-//! - **Remove a component a sphere was spawned with** ([`SphereVelocity`], [`Density`],
-//!   [`AppliedForce`], `Transform`): the sphere takes that component's default (no force, say).
+//! - **Remove a component a sphere was spawned with**: [`Density`] or [`AppliedForce`] then
+//!   mean their defaults (density 1, no force); without [`SphereVelocity`] or
+//!   [`SpherePosition`] the sphere keeps moving as the core has it (a removed `SpherePosition`
+//!   is put back).
 //! - **Change a component** ([`SphereVelocity`], [`SphereBody::radius`], [`Density`],
 //!   [`Restitution`], [`AppliedForce`], [`SpherePosition`] to teleport, [`FixedSphere`],
 //!   [`Tethered`]): applied at the next fixed step's `Prepare`. Writing `Transform` does

@@ -79,6 +79,10 @@ pub struct GroupContact {
     pub normal: DVec3,
     /// The contact's restitution.
     pub restitution: f64,
+    /// The separating speed the compression impulse aims for, `>= 0`: 0 for a plain contact
+    /// (just stop approaching); a resting pair that overlaps too deeply is given enough to
+    /// undo the excess over a step. The restitution impulse comes on top of it.
+    pub bias: f64,
     /// A string rather than a contact: `b` is its anchor (inverse mass 0, at rest) and `normal`
     /// points from the anchor side outward, so "not approaching" means "not stretching". It
     /// gets no restitution and is enforced again after the restitution impulses.
@@ -93,7 +97,7 @@ pub const MAX_GROUP_SWEEPS: u32 = 256;
 /// would not).
 ///
 /// First the compression impulses `λ ≥ 0` are found that just stop every contact approaching
-/// (projected Gauss–Seidel on the contacts until it converges to the last bit, at most
+/// (or, with a [`GroupContact::bias`], make it separate at that speed) (projected Gauss–Seidel on the contacts until it converges to the last bit, at most
 /// [`MAX_GROUP_SWEEPS`] sweeps), then each contact gets `restitution · λ` more. Momentum is
 /// conserved, and kinetic energy is never gained: with a common restitution `e` it changes by
 /// `(e² − 1)/2 · λᵀAλ`, so it is conserved exactly when `e = 1`. A single contact gives the same
@@ -114,7 +118,10 @@ pub fn resolve_simultaneous(
     };
     let scale = contacts
         .iter()
-        .map(|c| (velocities[c.b] - velocities[c.a]).dot(c.normal).abs())
+        .map(|c| {
+            let speed = (velocities[c.b] - velocities[c.a]).dot(c.normal).abs();
+            speed.max(c.bias)
+        })
         .fold(0.0f64, f64::max);
     for _ in 0..MAX_GROUP_SWEEPS {
         let mut largest_change = 0.0f64;
@@ -123,7 +130,7 @@ pub fn resolve_simultaneous(
             if inverse_sum == 0.0 {
                 continue;
             }
-            let normal_speed = (velocities[c.b] - velocities[c.a]).dot(c.normal);
+            let normal_speed = (velocities[c.b] - velocities[c.a]).dot(c.normal) - c.bias;
             let next = (*impulse - normal_speed / inverse_sum).max(0.0);
             let change = next - *impulse;
             if change != 0.0 {

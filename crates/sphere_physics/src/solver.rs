@@ -200,6 +200,15 @@ pub(crate) struct Solver {
     /// give no impulse again, for ever.
     settled: Vec<Settled>,
     settled_time: f64,
+    /// Resting contacts that took an impulse at `instant_time` (within the simultaneity
+    /// window): a later resting impact at that instant on one of their bodies is solved
+    /// together with them. One after the other, a sphere wedged between a fixed sphere and a
+    /// sphere pressing on it would pass the push back and forth, each pass smaller, until the
+    /// rest fell under the creep speed and was left to sink the pair for the rest of the step.
+    instant: Vec<Event>,
+    instant_time: f64,
+    /// Scratch: a group of impacts together with the instant's contacts they join.
+    joined: Vec<Event>,
     /// Scratch for simultaneous groups.
     group: Vec<Event>,
     ranges: Vec<std::ops::Range<usize>>,
@@ -357,6 +366,8 @@ impl Solver {
         self.tested.clear();
         self.settled.clear();
         self.settled_time = f64::NAN;
+        self.instant.clear();
+        self.instant_time = f64::NEG_INFINITY;
         self.unbounded = None;
         self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
@@ -506,6 +517,10 @@ impl Solver {
                 self.settled.clear();
                 self.settled_time = event.time;
             }
+            if event.time > self.instant_time + simultaneity {
+                self.instant.clear();
+                self.instant_time = event.time;
+            }
             let mut group = std::mem::take(&mut self.group);
             let mut ranges = std::mem::take(&mut self.ranges);
             let segments = &self.segments;
@@ -526,6 +541,12 @@ impl Solver {
                     continue;
                 }
                 events = events.saturating_add(component.len() as u32);
+                if self.join_instant(component) {
+                    let joined = std::mem::take(&mut self.joined);
+                    self.resolve_group(&joined, event.time, ctx, stats);
+                    self.joined = joined;
+                    continue;
+                }
                 match component {
                     [single] => self.resolve_event(single, ctx, stats),
                     _ => self.resolve_group(component, event.time, ctx, stats),
@@ -880,6 +901,73 @@ impl Solver {
             && self.versions[event.b as usize] == event.version_b
     }
 
+    /// If every impact of `component` is a resting one and shares a dynamic body with a
+    /// resting contact that took an impulse at this instant, gathers into `joined` the impacts
+    /// and those contacts (and the instant's contacts connected to them in turn, which leave
+    /// `instant`), touching their bodies, and says so. Otherwise changes nothing.
+    fn join_instant(&mut self, component: &[Event]) -> bool {
+        if self.instant.is_empty()
+            || !component.iter().any(|e| self.instant_shares_body(e))
+            || !component.iter().all(|e| self.resting_at(e))
+        {
+            return false;
+        }
+        self.joined.clear();
+        for e in component {
+            self.joined.push(*e);
+            self.touch(e.a);
+            self.touch(e.b);
+        }
+        // Through shared dynamic bodies (the touched ones), until nothing more joins: a pass
+        // per link of the chain, each over the instant's few contacts.
+        loop {
+            let before = self.joined.len();
+            let mut i = 0;
+            while i < self.instant.len() {
+                let c = self.instant[i];
+                if self.is_touched(c.a as usize) || self.is_touched(c.b as usize) {
+                    self.joined.push(c);
+                    self.instant.swap_remove(i);
+                    self.touch(c.a);
+                    self.touch(c.b);
+                } else {
+                    i += 1;
+                }
+            }
+            if self.joined.len() == before {
+                return true;
+            }
+        }
+    }
+
+    /// Whether a resting contact of this instant has a dynamic body of `e`.
+    fn instant_shares_body(&self, e: &Event) -> bool {
+        let moves = |k: u32| !self.segments[k as usize].is_fixed();
+        self.instant.iter().any(|c| {
+            [c.a, c.b]
+                .into_iter()
+                .any(|k| moves(k) && (k == e.a || k == e.b))
+        })
+    }
+
+    /// Whether impact `e` is a resting one (see [`Solver::restitution`]) on bodies without
+    /// strings.
+    fn resting_at(&self, e: &Event) -> bool {
+        let (a, b) = (e.a as usize, e.b as usize);
+        if self.strung(a).is_some() || self.strung(b).is_some() {
+            return false;
+        }
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let d = sb.position_at(e.time) - sa.position_at(e.time);
+        let distance = d.length();
+        if distance == 0.0 {
+            return false;
+        }
+        let normal = d / distance;
+        let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
+        approach_speed <= self.resting_scale * pressing(self.extra(a), self.extra(b), normal)
+    }
+
     /// Resolves contacts that happen at one instant together (see [`resolve_simultaneous`]).
     fn resolve_group(
         &mut self,
@@ -944,14 +1032,24 @@ impl Solver {
                 continue;
             }
             let normal = d / distance;
-            let (restitution, resting) =
-                self.restitution(e.a as usize, e.b as usize, normal, settings);
+            let (a, b) = (e.a as usize, e.b as usize);
+            let (restitution, resting) = self.restitution(a, b, normal, settings);
+            // As for a single resting impact (see `resolve_event`): keep undoing an overlap
+            // deeper than the allowance.
+            let bias = if resting {
+                let reach = sa.radius() + sb.radius();
+                let press = pressing(self.extra(a), self.extra(b), normal);
+                self.correction(reach - distance, contact_band(reach, settings), press, ctx)
+            } else {
+                0.0
+            };
             self.local_resting.push(resting);
             self.local_contacts.push(GroupContact {
                 a: local(&self.local_index, e.a),
                 b: local(&self.local_index, e.b),
                 normal,
                 restitution,
+                bias,
                 string: false,
             });
         }
@@ -969,6 +1067,7 @@ impl Solver {
                         b: self.local_inverse_masses.len(),
                         normal: r / distance,
                         restitution: 0.0,
+                        bias: 0.0,
                         string: true,
                     });
                     self.local_inverse_masses.push(0.0);
@@ -1003,6 +1102,14 @@ impl Solver {
             stats.resting_contacts += u32::from(resting);
             if impulse <= 0.0 {
                 self.settled.push(Settled::now(&self.versions, a, b));
+            } else if resting {
+                self.instant.push(Event {
+                    time: t,
+                    a: a as u32,
+                    b: b as u32,
+                    version_a: self.versions[a],
+                    version_b: self.versions[b],
+                });
             }
             let sa = &self.segments[a];
             self.collisions.push(collision(
@@ -1138,6 +1245,8 @@ impl Solver {
         self.set_velocity(b, r.velocity_b, t, ctx);
         if r.impulse <= 0.0 {
             self.settled.push(Settled::now(&self.versions, a, b));
+        } else if resting {
+            self.instant.push(*event);
         }
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);

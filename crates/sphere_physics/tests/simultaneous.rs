@@ -92,6 +92,7 @@ fn one_contact_resolved_simultaneously_equals_resolve() {
         b: 1,
         normal,
         restitution: 0.7,
+        bias: 0.0,
         string: false,
     };
     resolve_simultaneous(&[0.5, 0.25], &mut velocities, &[contact], &mut impulses);
@@ -101,6 +102,36 @@ fn one_contact_resolved_simultaneously_equals_resolve() {
 }
 
 /// A fixed body in a group: a ball dropped into the notch between two fixed balls at once.
+#[test]
+fn a_contact_bias_separates_the_pair_at_that_speed_keeping_momentum() {
+    // Masses 2 and 4, approaching at 1 m/s along x; the contact asks for 0.25 m/s apart.
+    let (va, vb) = (DVec3::new(0.5, 0.3, 0.0), DVec3::new(-0.5, 0.0, 0.2));
+    let inverse = [0.5, 0.25];
+    let mut velocities = [va, vb];
+    let mut impulses = Vec::new();
+    let contact = GroupContact {
+        a: 0,
+        b: 1,
+        normal: DVec3::X,
+        restitution: 0.0,
+        bias: 0.25,
+        string: false,
+    };
+    resolve_simultaneous(&inverse, &mut velocities, &[contact], &mut impulses);
+    let separating = (velocities[1] - velocities[0]).dot(DVec3::X);
+    assert!((separating - 0.25).abs() <= 1e-15, "{separating}");
+    // Impulse = relative speed change over the summed inverse masses: 1.25 / 0.75.
+    assert!(
+        (impulses[0] - 1.25 / 0.75).abs() <= 1e-14,
+        "{}",
+        impulses[0]
+    );
+    let momentum = |v: &[DVec3; 2]| v[0] / inverse[0] + v[1] / inverse[1];
+    assert!(close(momentum(&velocities), momentum(&[va, vb]), 1e-14));
+    // Tangential velocities untouched.
+    assert_eq!((velocities[0].y, velocities[1].z), (0.3, 0.2));
+}
+
 #[test]
 fn ball_into_a_notch_between_two_fixed_balls_bounces_straight_back() {
     let mut world = World::new(Settings::default());
@@ -160,7 +191,7 @@ mod properties {
                 .filter(|(a, b)| a < b)
                 .map(|&(a, b)| (a, b, positions[b] - positions[a]))
                 .filter(|(_, _, d)| d.length() > 1e-3)
-                .map(|(a, b, d)| GroupContact { a, b, normal: d.normalize(), restitution, string: false })
+                .map(|(a, b, d)| GroupContact { a, b, normal: d.normalize(), restitution, bias: 0.0, string: false })
                 .collect();
             let mut v = velocities.clone();
             let mut impulses = Vec::new();

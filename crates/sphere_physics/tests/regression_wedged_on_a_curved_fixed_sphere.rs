@@ -1,19 +1,62 @@
-//! Known bug, kept as an ignored test so it can be run (`cargo test -p sphere_physics --test
-//! known_bug_sliding_pair_overlap -- --ignored`): a case the `rain_on_a_big_fixed_sphere`
-//! property found with a random seed (in about one run in more than twenty; the property now
-//! uses a fixed seed). Two dynamic spheres (radii 0.30 and 0.14) slide together down the big
-//! fixed sphere, pressed into each other, and their overlap creeps to 4.2e-5 m: over the
-//! property's bound of twice the creep allowance (2 × 1.9e-5 m at this step), then back under
-//! it. The same with the code of 2026-11-30 before that day's second session: not a new
-//! regression. Not understood yet; a suspect: the resting window judges a pair's press by each
-//! sphere's own acceleration (gravity along the line of centres), not by what the dome's push
-//! adds on a curved slope.
+//! A small sphere sliding down a big fixed sphere with a bigger one riding on it: the fixed
+//! sphere's curve turns the small one up into the big one at every impact. Resolved one
+//! contact after the other, the push went back and forth between the two contacts, smaller
+//! each time, until what was left fell under the creep speed and was left to sink the pair
+//! for the rest of the step, undoing the start-of-step correction: the pair's overlap crept
+//! to 2.2 times the creep allowance (a case the `rain_on_a_big_fixed_sphere` property found
+//! with a random seed, replayed below) and each step took ~30 collisions. Now a resting impact
+//! on a body that took a resting impulse at the same instant is solved together with it.
 
 mod common;
 
+use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+
+/// A sphere of radius 0.14 sliding at 3 m/s on a fixed sphere of radius 3, 0.4 rad from its
+/// top, with a sphere of radius 0.3 touching it from behind and above (`offset` along the
+/// slope), moving with it.
+fn wedge(offset: f64) -> World {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world.add_sphere(SphereDesc::new(3.0).fixed()).unwrap();
+    let theta = 0.4f64;
+    let radial = DVec3::new(theta.sin(), theta.cos(), 0.0);
+    let downhill = DVec3::new(theta.cos(), -theta.sin(), 0.0);
+    let small = radial * (3.0 + 0.14);
+    let big = small + (radial + downhill * offset).normalize() * 0.44;
+    let speed = 3.0;
+    world
+        .add_sphere(SphereDesc::new(0.14).at(small).moving(downhill * speed))
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(0.3)
+                .at(big)
+                .moving(downhill * speed * big.length() / small.length()),
+        )
+        .unwrap();
+    world
+}
+
 #[test]
-#[ignore = "known bug: a pair sliding together on a curved fixed sphere overlaps past the creep bound"]
-fn a_pair_sliding_down_a_big_fixed_sphere_stays_within_the_creep_bound() {
+fn a_sphere_riding_one_that_slides_down_a_fixed_sphere_stays_within_the_creep_allowance() {
+    for offset in [-0.3, 0.0, 0.3] {
+        let dt = 0.0114;
+        let mut world = wedge(offset);
+        let creep = common::creep(&world, dt);
+        for step in 0..40 {
+            let stats = *world.step(dt).unwrap();
+            assert!(
+                stats.max_overlap <= creep,
+                "offset {offset}, step {step}: overlap {} over the creep allowance {creep}",
+                stats.max_overlap
+            );
+        }
+    }
+}
+
+/// The property's case: two spheres (radii 0.30 and 0.14) sliding together down the big fixed
+/// sphere overlapped 4.2e-5 m, over twice the creep allowance of 1.9e-5 m.
+#[test]
+fn the_rain_property_case_stays_within_the_creep_allowance() {
     // (velocity x, y, z, radius, density, restitution, jitter), as the property draws them.
     let spheres: Vec<common::Drop> = vec![
         (0.0, 0.0, 0.0, 0.1, 0.5, 0.0, 0.0),
@@ -690,8 +733,8 @@ fn a_pair_sliding_down_a_big_fixed_sphere_stays_within_the_creep_bound() {
     for step in 0..60 {
         let overlap = world.step(dt).unwrap().max_overlap;
         assert!(
-            overlap <= 2.0 * creep + 1e-9,
-            "step {step}: overlap {overlap} (creep {creep})"
+            overlap <= creep,
+            "step {step}: overlap {overlap} over the creep allowance {creep}"
         );
     }
 }

@@ -30,7 +30,7 @@ pub fn rain_on_a_dome(drops: &[Drop]) -> World {
 }
 
 /// How far a resting pair may sink into each other in one step of `dt` under that gravity
-/// (the creep allowance); the property allows twice this.
+/// (the creep allowance), which the property holds every step to.
 pub fn creep(world: &World, dt: f64) -> f64 {
     let settings = world.settings();
     settings.creep_fraction * settings.resting_factor * 9.81 * dt * dt

@@ -102,7 +102,28 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         dt: args.dt,
         method: args.method,
     };
-    let report = play(&scene, playback, &mut observer).map_err(bad_input)?;
+    let report = match play(&scene, playback, &mut observer) {
+        Ok(report) => report,
+        Err(e) => {
+            progress.finish();
+            // Keep what was traced up to the failure (it shows how the run got there), and
+            // say so.
+            let mut message = e.to_string();
+            if let (Some(writer), Some((path, _))) = (trace, &args.trace) {
+                let rows = writer.rows();
+                match (trace_error, writer.finish()) {
+                    (None, Ok(())) => message.push_str(&format!(
+                        "; the trace {} holds the {rows} step(s) before it",
+                        path.display()
+                    )),
+                    (Some(w), _) | (None, Err(w)) => {
+                        message.push_str(&format!("; writing the trace also failed: {w}"))
+                    }
+                }
+            }
+            return Err(bad_input(message));
+        }
+    };
     progress.finish();
     if let Some(e) = trace_error {
         return Err(io_failure(format!("writing the trace: {e}")));

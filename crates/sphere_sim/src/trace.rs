@@ -68,6 +68,7 @@ kinetic_energy,potential_energy,total_energy,momentum_x,momentum_y,momentum_z,ma
 pub struct TraceWriter {
     out: BufWriter<File>,
     format: TraceFormat,
+    rows: u64,
 }
 
 impl TraceWriter {
@@ -77,11 +78,16 @@ impl TraceWriter {
         if format == TraceFormat::Csv {
             writeln!(out, "{CSV_HEADER}")?;
         }
-        Ok(Self { out, format })
+        Ok(Self {
+            out,
+            format,
+            rows: 0,
+        })
     }
 
     /// Appends one row.
     pub fn write(&mut self, row: &TraceRow) -> io::Result<()> {
+        self.rows += 1;
         match self.format {
             TraceFormat::Csv => writeln!(
                 self.out,
@@ -105,6 +111,11 @@ impl TraceWriter {
                 writeln!(self.out)
             }
         }
+    }
+
+    /// How many rows were written (or attempted).
+    pub fn rows(&self) -> u64 {
+        self.rows
     }
 
     /// Flushes what is buffered.

@@ -448,3 +448,40 @@ fn regression_subnormal_flags_output_folders_and_refused_steps_are_named() {
         &["step 2", "t = 1 s", "'rocket'"],
     );
 }
+
+/// Regression (found by review): a run whose step was refused part-way left its trace file
+/// without a word: the trace keeps the steps before the failure, and the message says so.
+#[test]
+fn regression_a_refused_step_says_what_the_trace_holds() {
+    let runaway = write_scene(
+        "runaway_traced.ron",
+        r#"(name: "runaway", spheres: [
+            (name: "rocket", position: (0.0, 0.0, 0.0), velocity: (1e308, 0.0, 0.0), radius: 0.5),
+        ])"#,
+    );
+    let trace = scratch("runaway_trace.csv");
+    let _ = std::fs::remove_file(&trace);
+    let trace_arg = trace.to_str().unwrap();
+    assert_bad_input(
+        &[
+            "run",
+            runaway.to_str().unwrap(),
+            "--duration",
+            "3",
+            "--dt",
+            "1",
+            "--trace",
+            trace_arg,
+        ],
+        &[
+            "step 2",
+            "the trace",
+            trace_arg,
+            "holds the 1 step(s) before it",
+        ],
+    );
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 2, "header and step 1: {text}");
+    assert!(lines[1].starts_with("1,1.0,1.0,"), "{}", lines[1]);
+}

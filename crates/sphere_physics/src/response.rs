@@ -97,11 +97,14 @@ pub const MAX_GROUP_SWEEPS: u32 = 256;
 /// would not).
 ///
 /// First the compression impulses `λ ≥ 0` are found that just stop every contact approaching
-/// (or, with a [`GroupContact::bias`], make it separate at that speed) (projected Gauss–Seidel on the contacts until it converges to the last bit, at most
-/// [`MAX_GROUP_SWEEPS`] sweeps), then each contact gets `restitution · λ` more. Momentum is
-/// conserved, and kinetic energy is never gained: with a common restitution `e` it changes by
-/// `(e² − 1)/2 · λᵀAλ`, so it is conserved exactly when `e = 1`. A single contact gives the same
-/// answer as [`resolve`].
+/// (or, with a [`GroupContact::bias`], make it separate at that speed): exactly for up to
+/// [`MAX_EXACT_CONTACTS`] contacts (the linear complementarity problem, solved for each set of
+/// active contacts until one fits), otherwise by projected Gauss–Seidel on the contacts until
+/// it converges to the last bit, at most [`MAX_GROUP_SWEEPS`] sweeps. Then each contact gets
+/// `restitution · λ` more. Momentum is conserved, and without biases kinetic energy is never
+/// gained: with a common restitution `e` it changes by `(e² − 1)/2 · λᵀAλ`, so it is conserved
+/// exactly when `e = 1` (a bias pushes a pair apart on purpose, and may add energy). A single
+/// contact gives the same answer as [`resolve`].
 ///
 /// `velocities` are updated in place; `impulses` receives each contact's total impulse.
 pub fn resolve_simultaneous(
@@ -123,25 +126,15 @@ pub fn resolve_simultaneous(
             speed.max(c.bias)
         })
         .fold(0.0f64, f64::max);
-    for _ in 0..MAX_GROUP_SWEEPS {
-        let mut largest_change = 0.0f64;
-        for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
-            let inverse_sum = inverse_masses[c.a] + inverse_masses[c.b];
-            if inverse_sum == 0.0 {
-                continue;
-            }
-            let normal_speed = (velocities[c.b] - velocities[c.a]).dot(c.normal) - c.bias;
-            let next = (*impulse - normal_speed / inverse_sum).max(0.0);
-            let change = next - *impulse;
-            if change != 0.0 {
-                apply(velocities, c, change);
-                *impulse = next;
-                largest_change = largest_change.max((change * inverse_sum).abs());
+    if let Some(exact) = compress_exactly(inverse_masses, velocities, contacts, scale) {
+        for ((c, impulse), &lambda) in contacts.iter().zip(impulses.iter_mut()).zip(&exact) {
+            if lambda > 0.0 {
+                apply(velocities, c, lambda);
+                *impulse = lambda;
             }
         }
-        if largest_change <= 1e-15 * scale {
-            break;
-        }
+    } else {
+        compress_iteratively(inverse_masses, velocities, contacts, impulses, scale);
     }
     for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
         if !c.string {
@@ -166,6 +159,161 @@ pub fn resolve_simultaneous(
                 apply(velocities, c, change);
                 *impulse += change;
                 largest_change = largest_change.max(-normal_speed);
+            }
+        }
+        if largest_change <= 1e-15 * scale {
+            break;
+        }
+    }
+}
+
+/// The most contacts [`resolve_simultaneous`] solves exactly (by trying every set of active
+/// contacts: at most 2ⁿ small linear solves); larger groups are swept.
+pub const MAX_EXACT_CONTACTS: usize = 4;
+
+/// The compression impulses of a group of at most [`MAX_EXACT_CONTACTS`] contacts, exactly:
+/// the `λ ≥ 0` that leave every contact's normal speed `w = Aλ + b` at or above its bias,
+/// with `λᵢ = 0` wherever contact `i` ends up separating faster (the linear complementarity
+/// problem that the sweeps converge to). Sets of active contacts are tried smallest first, so
+/// of several answers (contacts that duplicate one another) one with fewest active contacts
+/// is kept. `None` for larger groups, or when rounding leaves no set that passes.
+fn compress_exactly(
+    inverse_masses: &[f64],
+    velocities: &[DVec3],
+    contacts: &[GroupContact],
+    scale: f64,
+) -> Option<[f64; MAX_EXACT_CONTACTS]> {
+    let n = contacts.len();
+    if n > MAX_EXACT_CONTACTS {
+        return None;
+    }
+    // b: each contact's normal speed now, less its bias (negative: it must be pushed).
+    // A: how an impulse on contact j changes contact i's normal speed.
+    let mut b = [0.0; MAX_EXACT_CONTACTS];
+    let mut a = [[0.0; MAX_EXACT_CONTACTS]; MAX_EXACT_CONTACTS];
+    let sign = |c: &GroupContact, k: usize| -> f64 {
+        if k == c.b {
+            1.0
+        } else if k == c.a {
+            -1.0
+        } else {
+            0.0
+        }
+    };
+    for (i, ci) in contacts.iter().enumerate() {
+        b[i] = (velocities[ci.b] - velocities[ci.a]).dot(ci.normal) - ci.bias;
+        for (j, cj) in contacts.iter().enumerate() {
+            let coupling: f64 = [cj.a, cj.b]
+                .into_iter()
+                .map(|k| sign(ci, k) * sign(cj, k) * inverse_masses[k])
+                .sum();
+            a[i][j] = coupling * ci.normal.dot(cj.normal);
+        }
+    }
+    if b[..n].iter().all(|&w| w >= 0.0) {
+        return Some([0.0; MAX_EXACT_CONTACTS]);
+    }
+    let tolerance = 1e-12 * scale;
+    // Active sets by size, then by bit pattern: deterministic, smallest first.
+    const SETS: [u32; 15] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14, 15];
+    for set in SETS.into_iter().filter(|&set| set < 1 << n) {
+        let Some(lambda) = solve_active(&a, &b, n, set) else {
+            continue;
+        };
+        if lambda[..n].iter().any(|&l| l < 0.0) {
+            continue;
+        }
+        let passes = (0..n).all(|i| {
+            let w = b[i] + (0..n).map(|j| a[i][j] * lambda[j]).sum::<f64>();
+            w >= -tolerance
+        });
+        if passes {
+            return Some(lambda);
+        }
+    }
+    None
+}
+
+/// Solves `A_SS λ_S = -b_S` for the contacts in `set` (the others get 0) by Gaussian
+/// elimination with partial pivoting; `None` when that block is singular (contacts that
+/// duplicate one another).
+fn solve_active(
+    a: &[[f64; MAX_EXACT_CONTACTS]; MAX_EXACT_CONTACTS],
+    b: &[f64; MAX_EXACT_CONTACTS],
+    n: usize,
+    set: u32,
+) -> Option<[f64; MAX_EXACT_CONTACTS]> {
+    let mut index = [0usize; MAX_EXACT_CONTACTS];
+    let mut m = 0;
+    for i in (0..n).filter(|&i| set & (1 << i) != 0) {
+        index[m] = i;
+        m += 1;
+    }
+    let mut matrix = [[0.0; MAX_EXACT_CONTACTS + 1]; MAX_EXACT_CONTACTS];
+    let mut largest = 0.0f64;
+    for r in 0..m {
+        for c in 0..m {
+            matrix[r][c] = a[index[r]][index[c]];
+            largest = largest.max(matrix[r][c].abs());
+        }
+        matrix[r][m] = -b[index[r]];
+    }
+    for col in 0..m {
+        let pivot = (col..m)
+            .max_by(|&x, &y| matrix[x][col].abs().total_cmp(&matrix[y][col].abs()))
+            .unwrap_or(col);
+        let size = matrix[pivot][col].abs();
+        if size.is_nan() || size <= 1e-12 * largest {
+            return None;
+        }
+        matrix.swap(col, pivot);
+        let (upper, lower) = matrix.split_at_mut(col + 1);
+        let pivot_row = &upper[col];
+        for row in &mut lower[..m - col - 1] {
+            let factor = row[col] / pivot_row[col];
+            for (x, p) in row[col..=m].iter_mut().zip(&pivot_row[col..=m]) {
+                *x -= factor * p;
+            }
+        }
+    }
+    let mut lambda = [0.0; MAX_EXACT_CONTACTS];
+    for r in (0..m).rev() {
+        let mut value = matrix[r][m];
+        for c in r + 1..m {
+            value -= matrix[r][c] * lambda[index[c]];
+        }
+        lambda[index[r]] = value / matrix[r][r];
+    }
+    lambda[..n].iter().all(|l| l.is_finite()).then_some(lambda)
+}
+
+/// The compression impulses by projected Gauss–Seidel: sweeps over the contacts until no
+/// impulse changes by more than 1e-15 of `scale`, at most [`MAX_GROUP_SWEEPS`].
+fn compress_iteratively(
+    inverse_masses: &[f64],
+    velocities: &mut [DVec3],
+    contacts: &[GroupContact],
+    impulses: &mut [f64],
+    scale: f64,
+) {
+    let apply = |velocities: &mut [DVec3], c: &GroupContact, impulse: f64| {
+        velocities[c.a] -= c.normal * (impulse * inverse_masses[c.a]);
+        velocities[c.b] += c.normal * (impulse * inverse_masses[c.b]);
+    };
+    for _ in 0..MAX_GROUP_SWEEPS {
+        let mut largest_change = 0.0f64;
+        for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
+            let inverse_sum = inverse_masses[c.a] + inverse_masses[c.b];
+            if inverse_sum == 0.0 {
+                continue;
+            }
+            let normal_speed = (velocities[c.b] - velocities[c.a]).dot(c.normal) - c.bias;
+            let next = (*impulse - normal_speed / inverse_sum).max(0.0);
+            let change = next - *impulse;
+            if change != 0.0 {
+                apply(velocities, c, change);
+                *impulse = next;
+                largest_change = largest_change.max((change * inverse_sum).abs());
             }
         }
         if largest_change <= 1e-15 * scale {

@@ -101,7 +101,7 @@ fn one_contact_resolved_simultaneously_equals_resolve() {
     assert!((impulses[0] - expected.impulse).abs() <= 1e-14);
 }
 
-/// A fixed body in a group: a ball dropped into the notch between two fixed balls at once.
+/// A contact's bias: the pair ends separating at that speed.
 #[test]
 fn a_contact_bias_separates_the_pair_at_that_speed_keeping_momentum() {
     // Masses 2 and 4, approaching at 1 m/s along x; the contact asks for 0.25 m/s apart.
@@ -132,6 +132,7 @@ fn a_contact_bias_separates_the_pair_at_that_speed_keeping_momentum() {
     assert_eq!((velocities[0].y, velocities[1].z), (0.3, 0.2));
 }
 
+/// A fixed body in a group: a ball dropped into the notch between two fixed balls at once.
 #[test]
 fn ball_into_a_notch_between_two_fixed_balls_bounces_straight_back() {
     let mut world = World::new(Settings::default());
@@ -208,6 +209,47 @@ mod properties {
                 prop_assert!((momentum(&v) - momentum(&velocities)).length() <= 1e-9 * scale);
             }
             prop_assert!(impulses.iter().all(|j| *j >= 0.0 && j.is_finite()));
+        }
+
+        /// Up to four contacts (solved exactly) or more (swept), restitution 0, each with a
+        /// bias: the answer is the linear complementarity problem's. Every contact ends
+        /// separating at least at its bias, impulses push, and a contact that got an impulse
+        /// ends separating at exactly its bias.
+        #[test]
+        fn compression_solves_the_complementarity_problem(
+            masses in prop::collection::vec(0.1..10.0f64, 5),
+            fixed in any::<bool>(),
+            velocities in prop::collection::vec(vec3(), 5),
+            positions in prop::collection::vec(vec3(), 5),
+            pairs in prop::collection::btree_set((0usize..5, 0usize..5), 1..8),
+            biases in prop::collection::vec(0.0..1.0f64, 10),
+        ) {
+            let mut inverse: Vec<f64> = masses.iter().map(|m| 1.0 / m).collect();
+            if fixed {
+                inverse[4] = 0.0;
+            }
+            let contacts: Vec<GroupContact> = pairs
+                .iter()
+                .filter(|(a, b)| a < b)
+                .map(|&(a, b)| (a, b, positions[b] - positions[a]))
+                .filter(|(_, _, d)| d.length() > 1e-3)
+                .zip(&biases)
+                .map(|((a, b, d), &bias)| GroupContact { a, b, normal: d.normalize(), restitution: 0.0, bias, string: false })
+                .collect();
+            let mut v = velocities.clone();
+            let mut impulses = Vec::new();
+            resolve_simultaneous(&inverse, &mut v, &contacts, &mut impulses);
+            let speed = |c: &GroupContact| (v[c.b] - v[c.a]).dot(c.normal);
+            let scale = 1.0 + velocities.iter().map(|v| v.length()).fold(0.0, f64::max);
+            // The sweeps stop at a 1e-15 change or 256 sweeps; exact solves are far tighter.
+            let tolerance = if contacts.len() <= sphere_physics::response::MAX_EXACT_CONTACTS { 1e-9 } else { 1e-3 } * scale;
+            for (c, &impulse) in contacts.iter().zip(&impulses) {
+                prop_assert!(impulse >= 0.0 && impulse.is_finite());
+                prop_assert!(speed(c) >= c.bias - tolerance, "{} < bias {} ({} contacts)", speed(c), c.bias, contacts.len());
+                if impulse > 0.0 {
+                    prop_assert!((speed(c) - c.bias).abs() <= tolerance, "{} != bias {} ({} contacts)", speed(c), c.bias, contacts.len());
+                }
+            }
         }
     }
 }

@@ -2,7 +2,9 @@
 //! Each iteration steps a warmed-up world once (the world keeps evolving between iterations).
 //! Also: one step of a shell of 40 000 spheres landing at one instant on one central sphere
 //! (one simultaneous group of 40 000 impacts: it took 0.35 to 0.41 s while groups were solved
-//! in quadratic time, 0.08 to 0.11 s since).
+//! in quadratic time, 0.08 to 0.11 s since), and of a 200 × 200 sheet of spheres settling at
+//! one instant, each onto its own fixed sphere (40 000 resting impacts, each its own part of
+//! one group).
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use sphere_bench::scenes;
@@ -42,6 +44,23 @@ fn shell(centre: SphereDesc) -> World {
     world
 }
 
+/// 200 × 200 spheres at rest 1 mm above their own fixed spheres, under gravity.
+fn resting_sheet() -> World {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    for i in 0..200 {
+        for j in 0..200 {
+            let floor = DVec3::new(f64::from(i) * 1.5, 0.0, f64::from(j) * 1.5);
+            world
+                .add_sphere(SphereDesc::new(0.5).at(floor).fixed())
+                .expect("valid");
+            world
+                .add_sphere(SphereDesc::new(0.5).at(floor + DVec3::Y * 1.001))
+                .expect("valid");
+        }
+    }
+    world
+}
+
 fn simultaneous(c: &mut Criterion) {
     let mut group = c.benchmark_group("simultaneous");
     group.sample_size(10);
@@ -57,6 +76,13 @@ fn simultaneous(c: &mut Criterion) {
             )
         });
     }
+    group.bench_function("resting_sheet", |b| {
+        b.iter_batched_ref(
+            resting_sheet,
+            |w| w.step(1.0 / 60.0).expect("valid dt").collisions,
+            BatchSize::LargeInput,
+        )
+    });
     group.finish();
 }
 

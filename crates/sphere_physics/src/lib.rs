@@ -40,6 +40,7 @@ pub mod body;
 mod broad_phase;
 pub mod contact;
 pub mod generate;
+mod instant;
 pub mod integrator;
 mod queue;
 pub mod response;

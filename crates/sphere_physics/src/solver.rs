@@ -12,6 +12,7 @@ use std::cmp::Ordering;
 use glam::DVec3;
 
 use crate::broad_phase::{Aabb, BroadPhase};
+use crate::instant::InstantContacts;
 use crate::queue::{EventQueue, Timed};
 use crate::response::{GroupContact, resolve, resolve_simultaneous};
 use crate::{Body, Collision, Integrator, Settings, StepStats, Tether, TimeOfImpact};
@@ -200,13 +201,10 @@ pub(crate) struct Solver {
     /// give no impulse again, for ever.
     settled: Vec<Settled>,
     settled_time: f64,
-    /// Resting contacts that took an impulse at `instant_time` (within the simultaneity
-    /// window): a later resting impact at that instant on one of their bodies is solved
-    /// together with them. One after the other, a sphere wedged between a fixed sphere and a
-    /// sphere pressing on it would pass the push back and forth, each pass smaller, until the
-    /// rest fell under the creep speed and was left to sink the pair for the rest of the step.
-    instant: Vec<Event>,
-    instant_time: f64,
+    /// Resting contacts that took an impulse at the current instant (within the simultaneity
+    /// window of its first event): a later resting impact at that instant on one of their
+    /// bodies is solved together with them (see [`InstantContacts`]).
+    instant: InstantContacts,
     /// Scratch: a group of impacts together with the instant's contacts they join.
     joined: Vec<Event>,
     /// Scratch for simultaneous groups.
@@ -366,8 +364,6 @@ impl Solver {
         self.tested.clear();
         self.settled.clear();
         self.settled_time = f64::NAN;
-        self.instant.clear();
-        self.instant_time = f64::NEG_INFINITY;
         self.unbounded = None;
         self.queue.reset(dt, bodies.len(), 4);
         self.segments.clear();
@@ -479,6 +475,7 @@ impl Solver {
             self.requery_touched(0.0, ctx, stats);
         }
 
+        self.instant.start(f64::NEG_INFINITY, self.segments.len());
         let budget = settings
             .max_collisions_per_body
             .saturating_mul(dynamic.max(1));
@@ -517,9 +514,8 @@ impl Solver {
                 self.settled.clear();
                 self.settled_time = event.time;
             }
-            if event.time > self.instant_time + simultaneity {
-                self.instant.clear();
-                self.instant_time = event.time;
+            if event.time > self.instant.time() + simultaneity {
+                self.instant.start(event.time, self.segments.len());
             }
             let mut group = std::mem::take(&mut self.group);
             let mut ranges = std::mem::take(&mut self.ranges);
@@ -527,8 +523,17 @@ impl Solver {
             sort_into_components(&mut group, &mut ranges, &mut self.components, |k| {
                 !segments[k as usize].is_fixed()
             });
+            let mut joined_any = false;
             for range in ranges.iter().cloned() {
                 let component = &group[range];
+                if joined_any && component.iter().any(|e| !self.is_current(e)) {
+                    // A join above reached one of these bodies: test them again from now.
+                    for e in component {
+                        self.touch(e.a);
+                        self.touch(e.b);
+                    }
+                    continue;
+                }
                 let versions = &self.versions;
                 if events >= budget
                     || component
@@ -541,10 +546,12 @@ impl Solver {
                     continue;
                 }
                 events = events.saturating_add(component.len() as u32);
-                if self.join_instant(component) {
+                if self.join_instant(component, event.time) {
                     let joined = std::mem::take(&mut self.joined);
+                    events = events.saturating_add((joined.len() - component.len()) as u32);
                     self.resolve_group(&joined, event.time, ctx, stats);
                     self.joined = joined;
+                    joined_any = true;
                     continue;
                 }
                 match component {
@@ -901,53 +908,48 @@ impl Solver {
             && self.versions[event.b as usize] == event.version_b
     }
 
-    /// If every impact of `component` is a resting one and shares a dynamic body with a
-    /// resting contact that took an impulse at this instant, gathers into `joined` the impacts
-    /// and those contacts (and the instant's contacts connected to them in turn, which leave
-    /// `instant`), touching their bodies, and says so. Otherwise changes nothing.
-    fn join_instant(&mut self, component: &[Event]) -> bool {
-        if self.instant.is_empty()
-            || !component.iter().any(|e| self.instant_shares_body(e))
+    /// If every impact of `component` (at time `t`) is a resting one and shares a dynamic body
+    /// with a resting contact that took an impulse at this instant, gathers into `joined` the
+    /// impacts and every instant contact connected to them through dynamic bodies, touches
+    /// their bodies, and says so. Otherwise changes nothing. Impacts on bodies hanging on
+    /// strings are left to [`Solver::resolve_event`] (a contact of the instant may still bring
+    /// a strung body into a group: [`Solver::resolve_group`] handles taut strings).
+    fn join_instant(&mut self, component: &[Event], t: f64) -> bool {
+        let instant = &self.instant;
+        if !component
+            .iter()
+            .any(|e| instant.involves(e.a) || instant.involves(e.b))
             || !component.iter().all(|e| self.resting_at(e))
         {
             return false;
         }
-        self.joined.clear();
+        let segments = &self.segments;
+        let moves = |k: u32| !segments[k as usize].is_fixed();
         for e in component {
-            self.joined.push(*e);
-            self.touch(e.a);
-            self.touch(e.b);
+            // Solved again below with the impact that replaces it.
+            self.instant.replace(e.a, e.b, moves);
         }
-        // Through shared dynamic bodies (the touched ones), until nothing more joins: a pass
-        // per link of the chain, each over the instant's few contacts.
-        loop {
-            let before = self.joined.len();
-            let mut i = 0;
-            while i < self.instant.len() {
-                let c = self.instant[i];
-                if self.is_touched(c.a as usize) || self.is_touched(c.b as usize) {
-                    self.joined.push(c);
-                    self.instant.swap_remove(i);
-                    self.touch(c.a);
-                    self.touch(c.b);
-                } else {
-                    i += 1;
-                }
-            }
-            if self.joined.len() == before {
-                return true;
-            }
+        self.joined.clear();
+        self.joined.extend_from_slice(component);
+        let (joined, versions) = (&mut self.joined, &self.versions);
+        self.instant
+            .gather(component.iter().flat_map(|e| [e.a, e.b]), moves, |a, b| {
+                joined.push(Event {
+                    time: t,
+                    a,
+                    b,
+                    version_a: versions[a as usize],
+                    version_b: versions[b as usize],
+                })
+            });
+        if self.joined.len() == component.len() {
+            return false;
         }
-    }
-
-    /// Whether a resting contact of this instant has a dynamic body of `e`.
-    fn instant_shares_body(&self, e: &Event) -> bool {
-        let moves = |k: u32| !self.segments[k as usize].is_fixed();
-        self.instant.iter().any(|c| {
-            [c.a, c.b]
-                .into_iter()
-                .any(|k| moves(k) && (k == e.a || k == e.b))
-        })
+        for i in 0..self.instant.reached().len() {
+            let k = self.instant.reached()[i];
+            self.touch(k);
+        }
+        true
     }
 
     /// Whether impact `e` is a resting one (see [`Solver::restitution`]) on bodies without
@@ -1103,13 +1105,9 @@ impl Solver {
             if impulse <= 0.0 {
                 self.settled.push(Settled::now(&self.versions, a, b));
             } else if resting {
-                self.instant.push(Event {
-                    time: t,
-                    a: a as u32,
-                    b: b as u32,
-                    version_a: self.versions[a],
-                    version_b: self.versions[b],
-                });
+                let segments = &self.segments;
+                self.instant
+                    .record(a as u32, b as u32, |k| !segments[k as usize].is_fixed());
             }
             let sa = &self.segments[a];
             self.collisions.push(collision(
@@ -1246,7 +1244,9 @@ impl Solver {
         if r.impulse <= 0.0 {
             self.settled.push(Settled::now(&self.versions, a, b));
         } else if resting {
-            self.instant.push(*event);
+            let segments = &self.segments;
+            self.instant
+                .record(event.a, event.b, |k| !segments[k as usize].is_fixed());
         }
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);

@@ -1,0 +1,153 @@
+//! The resting contacts that took an impulse at the current instant of a step's event loop,
+//! so that a later resting impact at that same instant can be solved together with them.
+//!
+//! Resolved one after the other, a sphere wedged between a fixed sphere and a sphere pressing
+//! on it passes the push back and forth, smaller each time, until what is left falls under the
+//! creep speed and sinks the pair for the rest of the step. Solved together, the wedge takes
+//! its load at once.
+//!
+//! Contacts are kept in one list per dynamic body (a fixed body's velocity never changes, so
+//! it joins nothing), so that finding a body's contacts and everything connected to them costs
+//! what they number, however many contacts the instant holds (a sheet of spheres landing at
+//! once makes tens of thousands).
+
+/// The end of a body's list.
+const NONE: u32 = u32::MAX;
+
+/// One recorded contact: its bodies, and the next contact in each body's list.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    pair: [u32; 2],
+    next: [u32; 2],
+    /// Already gathered into a group (or replaced by a new impact of the same pair).
+    used: bool,
+}
+
+/// The current instant's resting contacts (see the module docs).
+#[derive(Debug, Default)]
+pub(crate) struct InstantContacts {
+    time: f64,
+    links: Vec<Link>,
+    /// Each body's first link, valid when its epoch is `epoch`.
+    heads: Vec<(u32, u32)>,
+    epoch: u32,
+    /// Bodies reached by the current [`InstantContacts::gather`], valid when their mark is
+    /// `seen_epoch`.
+    seen: Vec<u32>,
+    seen_epoch: u32,
+    reached: Vec<u32>,
+}
+
+impl InstantContacts {
+    /// Forgets every contact: a new instant starts at `time`, with bodies indexed below
+    /// `bodies`.
+    pub(crate) fn start(&mut self, time: f64, bodies: usize) {
+        self.time = time;
+        self.links.clear();
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.heads.iter_mut().for_each(|h| *h = (0, NONE));
+            self.epoch = 1;
+        }
+        if self.heads.len() < bodies {
+            self.heads.resize(bodies, (0, NONE));
+            self.seen.resize(bodies, 0);
+        }
+    }
+
+    /// When the current instant started.
+    pub(crate) fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn head(&self, k: u32) -> u32 {
+        match self.heads[k as usize] {
+            (epoch, head) if epoch == self.epoch => head,
+            _ => NONE,
+        }
+    }
+
+    /// Records a resting contact between `a` and `b` (listed under each that `moves`).
+    pub(crate) fn record(&mut self, a: u32, b: u32, moves: impl Fn(u32) -> bool) {
+        let index = self.links.len() as u32;
+        let mut link = Link {
+            pair: [a, b],
+            next: [NONE; 2],
+            used: false,
+        };
+        for (end, k) in [a, b].into_iter().enumerate() {
+            if moves(k) {
+                link.next[end] = self.head(k);
+                self.heads[k as usize] = (self.epoch, index);
+            }
+        }
+        self.links.push(link);
+    }
+
+    /// Whether dynamic body `k` has a contact at this instant.
+    pub(crate) fn involves(&self, k: u32) -> bool {
+        self.head(k) != NONE
+    }
+
+    /// Marks the contacts of pair `(a, b)` as replaced (a new impact of theirs is being solved).
+    pub(crate) fn replace(&mut self, a: u32, b: u32, moves: impl Fn(u32) -> bool) {
+        let owner = if moves(a) { a } else { b };
+        let mut index = self.head(owner);
+        while index != NONE {
+            let link = &mut self.links[index as usize];
+            if link.pair == [a, b] || link.pair == [b, a] {
+                link.used = true;
+            }
+            index = link.next[usize::from(link.pair[0] != owner)];
+        }
+    }
+
+    /// Gathers every unused contact connected to the dynamic bodies among `seeds` (through
+    /// dynamic bodies), marking them used and handing each pair to `take`. The dynamic bodies
+    /// reached, seeds included, are then in [`InstantContacts::reached`].
+    pub(crate) fn gather(
+        &mut self,
+        seeds: impl Iterator<Item = u32>,
+        moves: impl Fn(u32) -> bool,
+        mut take: impl FnMut(u32, u32),
+    ) {
+        self.seen_epoch = self.seen_epoch.wrapping_add(1);
+        if self.seen_epoch == 0 {
+            self.seen.iter_mut().for_each(|s| *s = 0);
+            self.seen_epoch = 1;
+        }
+        self.reached.clear();
+        for k in seeds {
+            self.reach(k, &moves);
+        }
+        let mut next = 0;
+        while next < self.reached.len() {
+            let k = self.reached[next];
+            next += 1;
+            let mut index = self.head(k);
+            while index != NONE {
+                let link = self.links[index as usize];
+                if !link.used {
+                    self.links[index as usize].used = true;
+                    take(link.pair[0], link.pair[1]);
+                    for m in link.pair {
+                        self.reach(m, &moves);
+                    }
+                }
+                index = link.next[usize::from(link.pair[0] != k)];
+            }
+        }
+    }
+
+    fn reach(&mut self, k: u32, moves: impl Fn(u32) -> bool) {
+        if moves(k) && self.seen[k as usize] != self.seen_epoch {
+            self.seen[k as usize] = self.seen_epoch;
+            self.reached.push(k);
+        }
+    }
+
+    /// The dynamic bodies the last [`InstantContacts::gather`] reached.
+    pub(crate) fn reached(&self) -> &[u32] {
+        &self.reached
+    }
+}

@@ -47,7 +47,9 @@ pub struct RapierConfig {
     pub gravity: [f64; 3],
     /// Time step of one [`RapierWorld::step`].
     pub dt: f64,
-    /// Enable CCD on every dynamic body.
+    /// CCD on every dynamic body (each a "bullet", swept against every other collider);
+    /// `false` turns CCD off for the world, including rapier's automatic CCD of fast bodies
+    /// against fixed colliders (`max_ccd_substeps: 0`).
     pub ccd: bool,
     /// Rapier's `IntegrationParameters::length_unit`: the typical object size.
     pub length_unit: f64,
@@ -134,6 +136,9 @@ impl RapierWorld {
             length_unit: config.length_unit as Real,
             num_solver_iterations: config.solver_iterations.max(1),
             normalized_max_linear_velocity: Real::MAX,
+            // rapier's global CCD switch: by default (1) fast bodies are swept against fixed
+            // colliders even where no body asked for CCD.
+            max_ccd_substeps: usize::from(config.ccd),
             ..IntegrationParameters::default()
         };
 

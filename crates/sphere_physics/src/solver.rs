@@ -638,13 +638,13 @@ impl Solver {
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
             candidates.clear();
-            let segments = &self.segments;
-            self.broad.overlapping(k, &self.boxes, |m| {
+            self.broad
+                .collect_overlapping(k, &self.boxes, &mut candidates);
+            for &m in &candidates {
                 // Ask for the segment now, so the tests below find it loaded: the event
                 // loop's reads are random, and waiting for each in turn dominated them.
-                prefetch(&segments[m]);
-                candidates.push(m as u32);
-            });
+                prefetch(&self.segments[m as usize]);
+            }
             for &m in &candidates {
                 let m = m as usize;
                 if m < k && self.is_touched(m) {

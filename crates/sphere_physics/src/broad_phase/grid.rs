@@ -222,9 +222,42 @@ impl Grid {
         }
     }
 
+    /// Appends to `out` every body in `from..to` still in the grid whose box overlaps `q`,
+    /// without a branch per box (whether a box overlaps is a coin toss the branch predictor
+    /// loses): each index is written, and kept by advancing past it only if it overlaps.
+    #[inline]
+    fn collect_in(&self, q: &Coarse, from: usize, to: usize, out: &mut Vec<u32>) {
+        let base = out.len();
+        out.resize(base + (to - from), 0);
+        let slots = &mut out[base..];
+        let mut kept = 0;
+        for (offset, bj) in self.boxes[from..to].iter().enumerate() {
+            slots[kept] = (from + offset) as u32;
+            kept += usize::from(bj.overlaps(q));
+        }
+        out.truncate(base + kept);
+    }
+
+    /// Appends to `out` every body in the grid whose box may overlap `q` (a superset: the
+    /// grid compares boxes rounded outwards to single precision).
+    pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
+        self.visit_rows(q, &mut |coarse, from, to| {
+            self.collect_in(coarse, from, to, out)
+        });
+    }
+
     /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the
     /// grid compares boxes rounded outwards to single precision).
     pub fn visit(&self, q: &Aabb, f: &mut impl FnMut(usize)) {
+        self.visit_rows(q, &mut |coarse, from, to| {
+            self.visit_in(coarse, from, to, f)
+        });
+    }
+
+    /// Calls `scan(q rounded outwards, from, to)` for each range of grid bodies whose cells'
+    /// envelopes may meet `q`.
+    #[inline]
+    fn visit_rows(&self, q: &Aabb, scan: &mut impl FnMut(&Coarse, usize, usize)) {
         if self.len == 0 {
             return;
         }
@@ -248,7 +281,7 @@ impl Grid {
         }
         if cells > self.len {
             // A box over much of the grid: every body is cheaper than every cell.
-            self.visit_in(&coarse, 0, self.len, f);
+            scan(&coarse, 0, self.len);
             return;
         }
         let [nx, ny, _] = self.dims;
@@ -264,7 +297,7 @@ impl Grid {
                     self.start[row] as usize,
                     self.start[row + (xh - xl) + 1] as usize,
                 );
-                self.visit_in(&coarse, s, e, f);
+                scan(&coarse, s, e);
             }
         }
     }

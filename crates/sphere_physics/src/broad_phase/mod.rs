@@ -271,6 +271,22 @@ impl BroadPhase {
         }
     }
 
+    /// Appends to `out` every body `j != i` whose box may overlap body `i`'s (`boxes`
+    /// current): a superset, as [`BroadPhase::overlapping`] finds.
+    pub fn collect_overlapping(&self, i: usize, boxes: &[Aabb], out: &mut Vec<u32>) {
+        if self.brute {
+            self.overlapping(i, boxes, |j| out.push(j as u32));
+            return;
+        }
+        let from = out.len();
+        self.grid.collect(&boxes[i], out);
+        if let Some(at) = out[from..].iter().position(|&j| j as usize == i) {
+            out.remove(from + at);
+        }
+        self.hierarchy
+            .overlapping(i, &boxes[i], boxes, |j| out.push(j as u32));
+    }
+
     /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s (`boxes` current).
     pub fn overlapping(&self, i: usize, boxes: &[Aabb], mut f: impl FnMut(usize)) {
         let bi = &boxes[i];

@@ -3,7 +3,9 @@
 //! Level `L` has cells of side `base · 2^L`; each body lives at the lowest level whose cells are
 //! at least as large as its box, in the one cell that holds its box's lower corner. A body whose
 //! box overlaps a query box therefore has its lower corner in `[query.lo − cell, query.hi]` at
-//! its level: at most 3 cells per axis to visit. A huge fixed sphere (a dome, a wall) sits alone
+//! its level: at most 3 cells per axis to visit. (The top level also holds anything larger
+//! than its cells, absurd as that is: there a query reaches as far as its largest box, and
+//! its pairs are tested directly.) A huge fixed sphere (a dome, a wall) sits alone
 //! on a high level, where small bodies find it through the level's short member list.
 //!
 //! At the start of a step the bodies it holds are counting-sorted by cell into flat arrays
@@ -424,7 +426,8 @@ impl Hierarchy {
                 }
                 continue;
             }
-            let reach = self.level_extents[level].min(self.cells[level]);
+            // At most the cell, except on the top level, which also holds anything larger.
+            let reach = self.level_extents[level];
             let lo = self.key_at(level as u32, q.lo - DVec3::splat(reach));
             let hi = self.key_at(level as u32, q.hi);
             let cells = (f64::from(hi.x) - f64::from(lo.x) + 1.0)
@@ -489,6 +492,18 @@ impl Hierarchy {
                         x.wrapping_add(1),
                         &mut report,
                     );
+                }
+            } else if key.level as usize == LEVELS - 1
+                && self.level_extents[LEVELS - 1] > self.cells[LEVELS - 1]
+            {
+                // Bodies larger than the top level's cells (absurdly large: 2^40 typical
+                // boxes): their cells do not tell who they meet, so test every later one.
+                for q in p + 1..self.sorted_keys.len() {
+                    if self.sorted_keys[q].level == key.level && bp.overlaps(&self.sorted_boxes[q])
+                    {
+                        let j = self.order[q] as usize;
+                        f(i.min(j), i.max(j));
+                    }
                 }
             } else {
                 self.pairs_in_cells(p, key, bp, &mut f);

@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
-# Installs what the real-window test needs: a virtual X server (xvfb-run) and Mesa's CPU
-# Vulkan driver (lavapipe), so Bevy renders without a GPU or a display. Does nothing when
-# they are already there.
+# Installs what the real-window test needs: a virtual X server (xvfb-run), Mesa's CPU
+# Vulkan driver (lavapipe), so Bevy renders without a GPU or a display, and the X11 libraries
+# winit loads when it opens a window (cursor, input and keyboard). Does nothing when they are
+# already there.
 set -euo pipefail
 missing=()
 command -v xvfb-run >/dev/null 2>&1 || missing+=(xvfb xauth)
 ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1 || missing+=(mesa-vulkan-drivers)
+# winit's X11 backend opens these at run time (not at link time, so a build does not notice).
+for pair in libX11-xcb.so.1:libx11-xcb1 libXcursor.so.1:libxcursor1 libXi.so.6:libxi6 \
+    libxkbcommon-x11.so.0:libxkbcommon-x11-0; do
+    ldconfig -p | grep -q "${pair%%:*}" || missing+=("${pair##*:}")
+done
 if [ ${#missing[@]} -eq 0 ]; then
     exit 0
 fi

@@ -67,8 +67,10 @@ impl InstantContacts {
         }
     }
 
-    /// Records a resting contact between `a` and `b` (listed under each that `moves`).
+    /// Records a resting contact between `a` and `b` (listed under each that `moves`),
+    /// replacing the pair's earlier one at this instant.
     pub(crate) fn record(&mut self, a: u32, b: u32, moves: impl Fn(u32) -> bool) {
+        self.replace(a, b, &moves);
         let index = self.links.len() as u32;
         let mut link = Link {
             pair: [a, b],

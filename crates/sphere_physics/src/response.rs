@@ -223,9 +223,13 @@ fn compress_exactly(
         if lambda[..n].iter().any(|&l| l < 0.0) {
             continue;
         }
+        // Within rounding of the sum that makes w (relative to its largest term: a light
+        // sphere between heavy ones sums large terms to a small speed).
         let passes = (0..n).all(|i| {
-            let w = b[i] + (0..n).map(|j| a[i][j] * lambda[j]).sum::<f64>();
-            w >= -tolerance
+            let terms = (0..n).map(|j| a[i][j] * lambda[j]);
+            let w = b[i] + terms.clone().sum::<f64>();
+            let size = b[i].abs() + terms.map(f64::abs).sum::<f64>();
+            w >= -(tolerance + 1e-12 * size)
         });
         if passes {
             return Some(lambda);

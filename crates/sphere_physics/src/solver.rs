@@ -527,10 +527,12 @@ impl Solver {
             for range in ranges.iter().cloned() {
                 let component = &group[range];
                 if joined_any && component.iter().any(|e| !self.is_current(e)) {
-                    // A join above reached one of these bodies: test them again from now.
+                    // A join above reached one of these bodies: its pairs are tested again
+                    // from now (it is touched). The impacts still current stay queued.
                     for e in component {
-                        self.touch(e.a);
-                        self.touch(e.b);
+                        if self.is_current(e) {
+                            self.queue.push(*e);
+                        }
                     }
                     continue;
                 }
@@ -911,7 +913,9 @@ impl Solver {
     /// If every impact of `component` (at time `t`) is a resting one and shares a dynamic body
     /// with a resting contact that took an impulse at this instant, gathers into `joined` the
     /// impacts and every instant contact connected to them through dynamic bodies, touches
-    /// their bodies, and says so. Otherwise changes nothing. Impacts on bodies hanging on
+    /// their bodies, and says so. Otherwise the group is left to be solved as usual (its
+    /// pairs' own earlier contacts at this instant are marked replaced either way: they are
+    /// recorded again when solved). Impacts on bodies hanging on
     /// strings are left to [`Solver::resolve_event`] (a contact of the instant may still bring
     /// a strung body into a group: [`Solver::resolve_group`] handles taut strings).
     fn join_instant(&mut self, component: &[Event], t: f64) -> bool {

@@ -185,7 +185,8 @@ pub(crate) struct Solver {
     position_of: Vec<u32>,
     scratch_segments: Vec<Segment>,
     scratch_boxes: Vec<Aabb>,
-    /// Every pair tested this step: a superset of the pairs that can overlap at its end.
+    /// The pairs tested this step whose drifts could end the step overlapping (or that had an
+    /// impact queued): a superset of the pairs that can overlap at its end.
     tested: Vec<(u32, u32)>,
     touched_flags: Vec<u32>,
     touched_epoch: u32,
@@ -623,8 +624,9 @@ impl Solver {
         stats.potential_energy = potential;
         stats.momentum = momentum;
         // Two bodies overlapping now had overlapping boxes when either last changed, so they
-        // were tested then: the tested pairs are enough to find the largest overlap. Read in
-        // solver order, where neighbours in space are neighbours in memory.
+        // were tested then, with the drifts they ended on, which ended them overlapping (give
+        // or take a billionth of their reach): the tested pairs are enough to find the largest
+        // overlap. Read in solver order, where neighbours in space are neighbours in memory.
         stats.max_overlap = self
             .tested
             .iter()
@@ -1152,15 +1154,22 @@ impl Solver {
             (false, true) if !ball_meets_box(sj, si, ctx) => return,
             _ => {}
         }
-        self.tested.push((i as u32, j as u32));
         let d = sj.position_at(t) - si.position_at(t);
         let w = sj.velocity - si.velocity;
+        let reach = si.radius() + sj.radius();
+        // Kept for the end-of-step overlap if the drifts as they stand end it overlapping (or
+        // a string bends a drift; an impact found below is kept too): any later change to
+        // either drift tests the pair again.
+        let end = d + w * (ctx.dt - t);
+        let ends_overlapping = end.length_squared() < (reach * (1.0 + 1e-9)).powi(2);
+        if self.strings || ends_overlapping {
+            self.tested.push((i as u32, j as u32));
+        }
         if d.dot(w) >= 0.0 {
             // Not closing: both drift in straight lines for the rest of the step, so they only
             // move apart (either time-of-impact method would say so, after a square root).
             return;
         }
-        let reach = si.radius() + sj.radius();
         if self.creep_scale > 0.0 && d.length_squared() <= (reach * (1.0 + 1e-6)).powi(2) {
             // Touching and closing slower than the creep speed: left to the next step's resting
             // solve, rather than chased through a pile contact by contact.
@@ -1192,6 +1201,9 @@ impl Solver {
         stats.toi_tests += 1;
         stats.toi_iterations += u64::from(outcome.iterations);
         if let Some(toi) = outcome.time {
+            if !(self.strings || ends_overlapping) {
+                self.tested.push((i as u32, j as u32));
+            }
             let time = (t + toi).min(ctx.dt);
             if time == self.settled_time
                 && !self.settled.is_empty()

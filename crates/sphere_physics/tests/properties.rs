@@ -106,3 +106,20 @@ proptest! {
         prop_assert!(a.iter().zip(&b).all(|(x, y)| x.0.map(f64::to_bits) == y.0.map(f64::to_bits) && x.1.map(f64::to_bits) == y.1.map(f64::to_bits)));
     }
 }
+
+proptest! {
+    // More cases: the overlaps it checks come from spheres sliding together in piles, which
+    // only some scenes make.
+    #![proptest_config(config(512))]
+    /// A step's reported largest overlap is the largest overlap of any pair at its end (the
+    /// step finds it from the pairs it tested; the world's check looks at every pair).
+    #[test]
+    fn the_step_reports_the_largest_overlap(spheres in scene(), dt in 0.005..0.05f64) {
+        let mut world = common::rain_on_a_dome(&spheres);
+        for step in 0..40 {
+            let reported = world.step(dt).unwrap().max_overlap;
+            let actual = world.max_overlap();
+            prop_assert!((reported - actual).abs() <= 1e-12, "step {step}: reported {reported}, actual {actual}");
+        }
+    }
+}

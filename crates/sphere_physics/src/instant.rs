@@ -55,6 +55,11 @@ impl InstantContacts {
         }
     }
 
+    /// Whether no contact was recorded at this instant (the usual case: then nothing joins).
+    pub(crate) fn is_empty(&self) -> bool {
+        self.links.is_empty()
+    }
+
     /// When the current instant started.
     pub(crate) fn time(&self) -> f64 {
         self.time

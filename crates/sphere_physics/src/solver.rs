@@ -930,9 +930,10 @@ impl Solver {
     /// a strung body into a group: [`Solver::resolve_group`] handles taut strings).
     fn join_instant(&mut self, component: &[Event], t: f64) -> bool {
         let instant = &self.instant;
-        if !component
-            .iter()
-            .any(|e| instant.involves(e.a) || instant.involves(e.b))
+        if instant.is_empty()
+            || !component
+                .iter()
+                .any(|e| instant.involves(e.a) || instant.involves(e.b))
             || !component.iter().all(|e| self.resting_at(e))
         {
             return false;

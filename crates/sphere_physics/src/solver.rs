@@ -625,8 +625,8 @@ impl Solver {
         stats.momentum = momentum;
         // Two bodies overlapping now had overlapping boxes when either last changed, so they
         // were tested then, with the drifts they ended on, which ended them overlapping (give
-        // or take a billionth of their reach): the tested pairs are enough to find the largest
-        // overlap. Read in solver order, where neighbours in space are neighbours in memory.
+        // or take rounding, allowed for generously): the tested pairs are enough to find the
+        // largest overlap. Read in solver order, where neighbours in space are neighbours in memory.
         stats.max_overlap = self
             .tested
             .iter()
@@ -1161,8 +1161,15 @@ impl Solver {
         // Kept for the end-of-step overlap if the drifts as they stand end it overlapping (or
         // a string bends a drift; an impact found below is kept too): any later change to
         // either drift tests the pair again.
-        let end = d + w * (ctx.dt - t);
-        let ends_overlapping = end.length_squared() < (reach * (1.0 + 1e-9)).powi(2);
+        let rest = ctx.dt - t;
+        let end = d + w * rest;
+        // Allowing for rounding: each body's end position is reckoned on its own, from where it
+        // is, so far from the origin the two differ by more than a billionth of their reach.
+        let magnitude = si.position.abs().max_element()
+            + sj.position.abs().max_element()
+            + w.abs().max_element() * rest;
+        let allowance = reach * (1.0 + 1e-9) + 1e-12 * magnitude;
+        let ends_overlapping = end.length_squared() < allowance * allowance;
         if self.strings || ends_overlapping {
             self.tested.push((i as u32, j as u32));
         }

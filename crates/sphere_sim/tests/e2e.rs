@@ -401,6 +401,17 @@ fn tethered_cradle_swings_for_a_minute() {
     }
 }
 
+/// A scene file `name` with one sphere, 'rocket': its first 1 s step takes it to x = 1e308,
+/// and the second would overflow.
+fn runaway_scene(name: &str) -> PathBuf {
+    write_scene(
+        name,
+        r#"(name: "runaway", spheres: [
+            (name: "rocket", position: (0.0, 0.0, 0.0), velocity: (1e308, 0.0, 0.0), radius: 0.5),
+        ])"#,
+    )
+}
+
 /// Regression (found by review): a subnormal duration was blamed on the time step, an output
 /// path naming a folder was found only after the whole run, and a step refused part-way gave
 /// no step or time.
@@ -429,13 +440,7 @@ fn regression_subnormal_flags_output_folders_and_refused_steps_are_named() {
         ],
         &["--output", "is a folder"],
     );
-    // The first 1 s step takes the sphere to x = 1e308; the second would overflow.
-    let runaway = write_scene(
-        "runaway.ron",
-        r#"(name: "runaway", spheres: [
-            (name: "rocket", position: (0.0, 0.0, 0.0), velocity: (1e308, 0.0, 0.0), radius: 0.5),
-        ])"#,
-    );
+    let runaway = runaway_scene("runaway.ron");
     assert_bad_input(
         &[
             "run",
@@ -453,12 +458,7 @@ fn regression_subnormal_flags_output_folders_and_refused_steps_are_named() {
 /// without a word: the trace keeps the steps before the failure, and the message says so.
 #[test]
 fn regression_a_refused_step_says_what_the_trace_holds() {
-    let runaway = write_scene(
-        "runaway_traced.ron",
-        r#"(name: "runaway", spheres: [
-            (name: "rocket", position: (0.0, 0.0, 0.0), velocity: (1e308, 0.0, 0.0), radius: 0.5),
-        ])"#,
-    );
+    let runaway = runaway_scene("runaway_traced.ron");
     let trace = scratch("runaway_trace.csv");
     let _ = std::fs::remove_file(&trace);
     let trace_arg = trace.to_str().unwrap();

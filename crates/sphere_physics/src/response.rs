@@ -89,6 +89,26 @@ pub struct GroupContact {
     pub string: bool,
 }
 
+impl GroupContact {
+    /// A contact between bodies `a` and `b` along `normal` (unit, from `a` to `b`) with
+    /// `restitution`, no bias.
+    pub fn new(a: usize, b: usize, normal: DVec3, restitution: f64) -> Self {
+        GroupContact {
+            a,
+            b,
+            normal,
+            restitution,
+            bias: 0.0,
+            string: false,
+        }
+    }
+
+    /// The same contact, asked to separate at `bias` (see [`GroupContact::bias`]).
+    pub fn with_bias(self, bias: f64) -> Self {
+        GroupContact { bias, ..self }
+    }
+}
+
 /// The most sweeps [`resolve_simultaneous`] makes over its contacts.
 pub const MAX_GROUP_SWEEPS: u32 = 256;
 

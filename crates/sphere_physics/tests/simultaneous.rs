@@ -87,14 +87,7 @@ fn one_contact_resolved_simultaneously_equals_resolve() {
     let expected = resolve(0.5, 0.25, va, vb, normal, 0.7);
     let mut velocities = [va, vb];
     let mut impulses = Vec::new();
-    let contact = GroupContact {
-        a: 0,
-        b: 1,
-        normal,
-        restitution: 0.7,
-        bias: 0.0,
-        string: false,
-    };
+    let contact = GroupContact::new(0, 1, normal, 0.7);
     resolve_simultaneous(&[0.5, 0.25], &mut velocities, &[contact], &mut impulses);
     assert!(close(velocities[0], expected.velocity_a, 1e-14));
     assert!(close(velocities[1], expected.velocity_b, 1e-14));
@@ -109,14 +102,7 @@ fn a_contact_bias_separates_the_pair_at_that_speed_keeping_momentum() {
     let inverse = [0.5, 0.25];
     let mut velocities = [va, vb];
     let mut impulses = Vec::new();
-    let contact = GroupContact {
-        a: 0,
-        b: 1,
-        normal: DVec3::X,
-        restitution: 0.0,
-        bias: 0.25,
-        string: false,
-    };
+    let contact = GroupContact::new(0, 1, DVec3::X, 0.0).with_bias(0.25);
     resolve_simultaneous(&inverse, &mut velocities, &[contact], &mut impulses);
     let separating = (velocities[1] - velocities[0]).dot(DVec3::X);
     assert!((separating - 0.25).abs() <= 1e-15, "{separating}");
@@ -192,7 +178,7 @@ mod properties {
                 .filter(|(a, b)| a < b)
                 .map(|&(a, b)| (a, b, positions[b] - positions[a]))
                 .filter(|(_, _, d)| d.length() > 1e-3)
-                .map(|(a, b, d)| GroupContact { a, b, normal: d.normalize(), restitution, bias: 0.0, string: false })
+                .map(|(a, b, d)| GroupContact::new(a, b, d.normalize(), restitution))
                 .collect();
             let mut v = velocities.clone();
             let mut impulses = Vec::new();
@@ -234,7 +220,7 @@ mod properties {
                 .map(|&(a, b)| (a, b, positions[b] - positions[a]))
                 .filter(|(_, _, d)| d.length() > 1e-3)
                 .zip(&biases)
-                .map(|((a, b, d), &bias)| GroupContact { a, b, normal: d.normalize(), restitution: 0.0, bias, string: false })
+                .map(|((a, b, d), &bias)| GroupContact::new(a, b, d.normalize(), 0.0).with_bias(bias))
                 .collect();
             let mut v = velocities.clone();
             let mut impulses = Vec::new();

@@ -333,6 +333,11 @@ struct RestingContact {
     bias: f64,
 }
 
+/// Whether segment `k` of `segments` is a dynamic body's (fixed ones join nothing).
+fn moving(segments: &[Segment]) -> impl Fn(u32) -> bool + Copy + '_ {
+    |k| !segments[k as usize].is_fixed()
+}
+
 /// How many bodies ahead the write-back asks for a body's segment.
 const WRITE_BACK_AHEAD: usize = 16;
 
@@ -925,9 +930,9 @@ impl Solver {
     /// impacts and every instant contact connected to them through dynamic bodies, touches
     /// their bodies, and says so. Otherwise the group is left to be solved as usual (its
     /// pairs' own earlier contacts at this instant are marked replaced either way: they are
-    /// recorded again when solved). Impacts on bodies hanging on
-    /// strings are left to [`Solver::resolve_event`] (a contact of the instant may still bring
-    /// a strung body into a group: [`Solver::resolve_group`] handles taut strings).
+    /// recorded again when solved). Impacts on bodies hanging on strings are left to
+    /// [`Solver::resolve_event`] (a contact of the instant may still bring a strung body into
+    /// a group: [`Solver::resolve_group`] handles taut strings).
     fn join_instant(&mut self, component: &[Event], t: f64) -> bool {
         let instant = &self.instant;
         if instant.is_empty()
@@ -938,8 +943,7 @@ impl Solver {
         {
             return false;
         }
-        let segments = &self.segments;
-        let moves = |k: u32| !segments[k as usize].is_fixed();
+        let moves = moving(&self.segments);
         for e in component {
             // Solved again below with the impact that replaces it.
             self.instant.replace(e.a, e.b, moves);
@@ -1120,9 +1124,8 @@ impl Solver {
             if impulse <= 0.0 {
                 self.settled.push(Settled::now(&self.versions, a, b));
             } else if resting {
-                let segments = &self.segments;
                 self.instant
-                    .record(a as u32, b as u32, |k| !segments[k as usize].is_fixed());
+                    .record(a as u32, b as u32, moving(&self.segments));
             }
             let sa = &self.segments[a];
             self.collisions.push(collision(
@@ -1276,9 +1279,8 @@ impl Solver {
         if r.impulse <= 0.0 {
             self.settled.push(Settled::now(&self.versions, a, b));
         } else if resting {
-            let segments = &self.segments;
             self.instant
-                .record(event.a, event.b, |k| !segments[k as usize].is_fixed());
+                .record(event.a, event.b, moving(&self.segments));
         }
         stats.collisions += 1;
         stats.resting_contacts += u32::from(resting);

@@ -187,9 +187,11 @@ pub fn resolve_simultaneous(
     }
 }
 
-/// The most contacts [`resolve_simultaneous`] solves exactly (by trying every set of active
-/// contacts: at most 2ⁿ small linear solves); larger groups are swept.
-pub const MAX_EXACT_CONTACTS: usize = 4;
+/// The most contacts [`resolve_simultaneous`] solves exactly (by trying sets of active
+/// contacts: at most 2ⁿ − 1 small linear solves, a few microseconds at 8); larger groups are
+/// swept. Sweeps converge slowly, or not within [`MAX_GROUP_SWEEPS`], where contacts are
+/// nearly dependent (five spheres touching pairwise).
+pub const MAX_EXACT_CONTACTS: usize = 8;
 
 /// The compression impulses of a group of at most [`MAX_EXACT_CONTACTS`] contacts, exactly:
 /// the `λ ≥ 0` that leave every contact's normal speed `w = Aλ + b` at or above its bias,
@@ -235,8 +237,9 @@ fn compress_exactly(
     }
     let tolerance = 1e-12 * scale;
     // Active sets by size, then by bit pattern: deterministic, smallest first.
-    const SETS: [u32; 15] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14, 15];
-    for set in SETS.into_iter().filter(|&set| set < 1 << n) {
+    let sets =
+        (1..=n as u32).flat_map(|size| (1..1u32 << n).filter(move |s| s.count_ones() == size));
+    for set in sets {
         let Some(lambda) = solve_active(&a, &b, n, set) else {
             continue;
         };

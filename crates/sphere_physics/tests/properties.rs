@@ -73,23 +73,6 @@ proptest! {
         }
     }
 
-    /// The rain on a dome (gravity, resting contacts, piles, simultaneous groups) gives the
-    /// same bits run after run, collisions included.
-    #[test]
-    fn rain_is_deterministic(spheres in scene(), dt in 0.005..0.05f64) {
-        let run = || {
-            let mut world = common::rain_on_a_dome(&spheres);
-            let mut records = Vec::new();
-            for _ in 0..40 {
-                world.step(dt).unwrap();
-                records.extend(world.collisions().iter().map(|c| (c.a, c.b, c.time.to_bits(), c.impulse.to_bits())));
-            }
-            let state: Vec<_> = world.bodies().iter().map(|b| (b.position().to_array().map(f64::to_bits), b.velocity().to_array().map(f64::to_bits))).collect();
-            (state, records)
-        };
-        prop_assert!(run() == run());
-    }
-
     #[test]
     fn deterministic(spheres in scene()) {
         let run = || {

@@ -151,7 +151,18 @@ mod properties {
         (-5.0..5.0f64, -5.0..5.0f64, -5.0..5.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
     }
 
+    /// `cases` cases from a fixed seed, so that a run (and CI) repeats bit for bit; set
+    /// `PROPTEST_RNG_SEED` to explore other cases.
+    fn config(cases: u32) -> ProptestConfig {
+        let mut config = ProptestConfig::with_cases(cases);
+        if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
+            config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x5EED_5EED);
+        }
+        config
+    }
+
     proptest! {
+        #![proptest_config(config(256))]
         /// Any group of contacts among 5 bodies (one possibly fixed), one restitution:
         /// momentum of the dynamic bodies changes only through fixed ones, energy never grows,
         /// and impulses are finite and push. (The restitution impulses may leave a contact that
@@ -197,17 +208,21 @@ mod properties {
             prop_assert!(impulses.iter().all(|j| *j >= 0.0 && j.is_finite()));
         }
 
-        /// Up to four contacts (solved exactly) or more (swept), restitution 0, each with a
-        /// bias: the answer is the linear complementarity problem's. Every contact ends
-        /// separating at least at its bias, impulses push, and a contact that got an impulse
-        /// ends separating at exactly its bias.
+        /// Up to eight contacts, solved exactly, restitution 0, each with a bias: the answer is
+        /// the linear complementarity problem's. Every contact ends separating at least at its
+        /// bias, impulses push, and a contact that got an impulse ends separating at exactly
+        /// its bias. (Nine or ten contacts are swept: only the impulses are checked.)
         #[test]
         fn compression_solves_the_complementarity_problem(
             masses in prop::collection::vec(0.1..10.0f64, 5),
             fixed in any::<bool>(),
             velocities in prop::collection::vec(vec3(), 5),
             positions in prop::collection::vec(vec3(), 5),
-            pairs in prop::collection::btree_set((0usize..5, 0usize..5), 1..8),
+            // Any of the ten pairs of five bodies: from one contact to all ten.
+            pairs in prop::sample::subsequence(
+                (0..5).flat_map(|a| (a + 1..5).map(move |b| (a, b))).collect::<Vec<_>>(),
+                1..=10,
+            ),
             biases in prop::collection::vec(0.0..1.0f64, 10),
         ) {
             let mut inverse: Vec<f64> = masses.iter().map(|m| 1.0 / m).collect();
@@ -216,7 +231,6 @@ mod properties {
             }
             let contacts: Vec<GroupContact> = pairs
                 .iter()
-                .filter(|(a, b)| a < b)
                 .map(|&(a, b)| (a, b, positions[b] - positions[a]))
                 .filter(|(_, _, d)| d.length() > 1e-3)
                 .zip(&biases)
@@ -227,13 +241,17 @@ mod properties {
             resolve_simultaneous(&inverse, &mut v, &contacts, &mut impulses);
             let speed = |c: &GroupContact| (v[c.b] - v[c.a]).dot(c.normal);
             let scale = 1.0 + velocities.iter().map(|v| v.length()).fold(0.0, f64::max);
-            // The sweeps stop at a 1e-15 change or 256 sweeps; exact solves are far tighter.
-            let tolerance = if contacts.len() <= sphere_physics::response::MAX_EXACT_CONTACTS { 1e-9 } else { 1e-3 } * scale;
-            for (c, &impulse) in contacts.iter().zip(&impulses) {
-                prop_assert!(impulse >= 0.0 && impulse.is_finite());
-                prop_assert!(speed(c) >= c.bias - tolerance, "{} < bias {} ({} contacts)", speed(c), c.bias, contacts.len());
-                if impulse > 0.0 {
-                    prop_assert!((speed(c) - c.bias).abs() <= tolerance, "{} != bias {} ({} contacts)", speed(c), c.bias, contacts.len());
+            prop_assert!(impulses.iter().all(|j| *j >= 0.0 && j.is_finite()));
+            // Beyond the exact solve's reach the sweeps stop at 256, which need not be
+            // converged where contacts are nearly dependent: only the exact answers are held
+            // to the problem's conditions.
+            if contacts.len() <= sphere_physics::response::MAX_EXACT_CONTACTS {
+                let tolerance = 1e-10 * scale;
+                for (c, &impulse) in contacts.iter().zip(&impulses) {
+                    prop_assert!(speed(c) >= c.bias - tolerance, "{} < bias {} ({} contacts)", speed(c), c.bias, contacts.len());
+                    if impulse > 0.0 {
+                        prop_assert!((speed(c) - c.bias).abs() <= tolerance, "{} != bias {} ({} contacts)", speed(c), c.bias, contacts.len());
+                    }
                 }
             }
         }

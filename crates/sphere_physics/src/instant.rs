@@ -8,8 +8,9 @@
 //!
 //! Contacts are kept in one list per dynamic body (a fixed body's velocity never changes, so
 //! it joins nothing), so that finding a body's contacts and everything connected to them costs
-//! what they number, however many contacts the instant holds (a sheet of spheres landing at
-//! once makes tens of thousands).
+//! what the bodies reached have recorded at this instant (contacts already gathered or
+//! replaced stay in their lists, marked), however many contacts the instant holds (a sheet of
+//! spheres landing at once makes tens of thousands).
 
 /// The end of a body's list.
 const NONE: u32 = u32::MAX;

@@ -81,7 +81,9 @@ pub struct GroupContact {
     pub restitution: f64,
     /// The separating speed the compression impulse aims for, `>= 0`: 0 for a plain contact
     /// (just stop approaching); a resting pair that overlaps too deeply is given enough to
-    /// undo the excess over a step. The restitution impulse comes on top of it.
+    /// undo the excess over a step. The restitution impulse, `restitution` times the whole
+    /// compression impulse, comes on top of it (so scales the bias's share too; the engine
+    /// gives a bias only to resting contacts, whose restitution is 0).
     pub bias: f64,
     /// A string rather than a contact: `b` is its anchor (inverse mass 0, at rest) and `normal`
     /// points from the anchor side outward, so "not approaching" means "not stretching". It
@@ -103,8 +105,13 @@ impl GroupContact {
         }
     }
 
-    /// The same contact, asked to separate at `bias` (see [`GroupContact::bias`]).
+    /// The same contact, asked to separate at `bias` (see [`GroupContact::bias`]; a negative
+    /// one would let the pair approach, and is a caller's error).
     pub fn with_bias(self, bias: f64) -> Self {
+        debug_assert!(
+            bias >= 0.0,
+            "a contact's bias is a separating speed: {bias}"
+        );
         GroupContact { bias, ..self }
     }
 }
@@ -119,8 +126,9 @@ pub const MAX_GROUP_SWEEPS: u32 = 256;
 /// First the compression impulses `λ ≥ 0` are found that just stop every contact approaching
 /// (or, with a [`GroupContact::bias`], make it separate at that speed): exactly for up to
 /// [`MAX_EXACT_CONTACTS`] contacts (the linear complementarity problem, solved for each set of
-/// active contacts until one fits), otherwise by projected Gauss–Seidel on the contacts until
-/// it converges to the last bit, at most [`MAX_GROUP_SWEEPS`] sweeps. Then each contact gets
+/// active contacts until one fits), otherwise (or if rounding lets no set fit) by projected
+/// Gauss–Seidel on the contacts until it converges to the last bit, at most
+/// [`MAX_GROUP_SWEEPS`] sweeps. Then each contact gets
 /// `restitution · λ` more. Momentum is conserved, and without biases kinetic energy is never
 /// gained: with a common restitution `e` it changes by `(e² − 1)/2 · λᵀAλ`, so it is conserved
 /// exactly when `e = 1` (a bias pushes a pair apart on purpose, and may add energy). A single

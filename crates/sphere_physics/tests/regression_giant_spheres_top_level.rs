@@ -49,7 +49,51 @@ fn regression_spheres_beyond_the_top_level_still_collide() {
             world.body(left).unwrap().velocity(),
             world.body(right).unwrap().velocity(),
         );
-        assert!((vl + DVec3::X * 1e6).length() <= 1e-6 * 1e6, "{vl}");
-        assert!((vr - DVec3::X * 1e6).length() <= 1e-6 * 1e6, "{vr}");
+        assert!((vl + DVec3::X * 1e6).length() <= 1e-9 * 1e6, "{vl}");
+        assert!((vr - DVec3::X * 1e6).length() <= 1e-9 * 1e6, "{vr}");
+    }
+}
+
+/// The same scale, with a third sphere that only a re-query finds: in each row of three, the
+/// right one strikes the middle one, which then strikes the left one, all 1 km apart. The
+/// left one lies two top cells below the middle one, beyond the reach a query had.
+#[test]
+fn regression_a_re_query_finds_spheres_beyond_the_top_level() {
+    let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
+    for i in 0..200 {
+        let at = DVec3::new(f64::from(i % 10), f64::from(i / 10), 0.0) * 0.5;
+        world.add_sphere(SphereDesc::new(0.05).at(at)).unwrap();
+    }
+    let radius = 1e11;
+    let spacing = 2.0 * radius + 1000.0;
+    let top_cell = 0.1 * 2f64.powi(40);
+    let mut rows = Vec::new();
+    for k in 0..10 {
+        // The left sphere's box starts half a top cell in.
+        let left = DVec3::new(0.5 * top_cell + radius, f64::from(k) * 4.0 * radius, 1e13);
+        let ids: Vec<_> = (0..3)
+            .map(|n| {
+                let desc = SphereDesc::new(radius).at(left + DVec3::X * (spacing * f64::from(n)));
+                let desc = if n == 2 {
+                    desc.moving(-DVec3::X * 1e6)
+                } else {
+                    desc
+                };
+                world.add_sphere(desc).unwrap()
+            })
+            .collect();
+        rows.push(ids);
+    }
+    let stats = *world.step(1.0 / 60.0).unwrap();
+    assert_eq!(stats.collisions, 20, "two impacts per row");
+    for ids in rows {
+        // Equal masses, head-on, elastic: the blow passes along, the left one leaves.
+        let v: Vec<DVec3> = ids
+            .iter()
+            .map(|&id| world.body(id).unwrap().velocity())
+            .collect();
+        assert!((v[0] + DVec3::X * 1e6).length() <= 1e-9 * 1e6, "{}", v[0]);
+        assert!(v[1].length() <= 1e-9 * 1e6, "{}", v[1]);
+        assert!(v[2].length() <= 1e-9 * 1e6, "{}", v[2]);
     }
 }

@@ -10,7 +10,10 @@ use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 fn regression_a_pair_far_out_that_ends_overlapping_is_reported() {
     let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
     let r = 1e-6;
-    // One unit in the last place at 1000, and a gap just under the reach, in those units.
+    // One unit in the last place at 1000. The spheres start 10 units closer than their reach
+    // (overlapping by about 1e-12 m), and the second moves away at a speed that carries it
+    // about those 10 units in the step: the drifts say they end a hair apart, the positions
+    // (each rounded on its own) that they end overlapping by about 5e-15 m.
     let ulp = 2f64.powi(-43);
     let d = (2.0 * r / ulp).floor() * ulp - 10.0 * ulp;
     world

@@ -12,16 +12,17 @@ mod common;
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
 /// A sphere of radius 0.14 sliding at 3 m/s on a fixed sphere of radius 3, 0.4 rad from its
-/// top, with a sphere of radius 0.3 touching it from behind and above (`offset` along the
-/// slope), moving with it.
-fn wedge(offset: f64) -> World {
+/// top, with a sphere of radius 0.3 touching it from behind and above (0.3 back along the
+/// slope for each 1 up), moving with it. Before the fix their overlap reached 1.41 times the
+/// creep allowance (2.7e-5 m) in the third step.
+fn wedge() -> World {
     let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
     world.add_sphere(SphereDesc::new(3.0).fixed()).unwrap();
     let theta = 0.4f64;
     let radial = DVec3::new(theta.sin(), theta.cos(), 0.0);
     let downhill = DVec3::new(theta.cos(), -theta.sin(), 0.0);
     let small = radial * (3.0 + 0.14);
-    let big = small + (radial + downhill * offset).normalize() * 0.44;
+    let big = small + (radial - downhill * 0.3).normalize() * 0.44;
     let speed = 3.0;
     world
         .add_sphere(SphereDesc::new(0.14).at(small).moving(downhill * speed))
@@ -38,18 +39,16 @@ fn wedge(offset: f64) -> World {
 
 #[test]
 fn a_sphere_riding_one_that_slides_down_a_fixed_sphere_stays_within_the_creep_allowance() {
-    for offset in [-0.3, 0.0, 0.3] {
-        let dt = 0.0114;
-        let mut world = wedge(offset);
-        let creep = common::creep(&world, dt);
-        for step in 0..40 {
-            let stats = *world.step(dt).unwrap();
-            assert!(
-                stats.max_overlap <= creep,
-                "offset {offset}, step {step}: overlap {} over the creep allowance {creep}",
-                stats.max_overlap
-            );
-        }
+    let dt = 0.0114;
+    let mut world = wedge();
+    let creep = common::creep(&world, dt);
+    for step in 0..40 {
+        let stats = *world.step(dt).unwrap();
+        assert!(
+            stats.max_overlap <= creep,
+            "step {step}: overlap {} over the creep allowance {creep}",
+            stats.max_overlap
+        );
     }
 }
 

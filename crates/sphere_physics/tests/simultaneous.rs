@@ -114,8 +114,9 @@ fn a_contact_bias_separates_the_pair_at_that_speed_keeping_momentum() {
     );
     let momentum = |v: &[DVec3; 2]| v[0] / inverse[0] + v[1] / inverse[1];
     assert!(close(momentum(&velocities), momentum(&[va, vb]), 1e-14));
-    // Tangential velocities untouched.
-    assert_eq!((velocities[0].y, velocities[1].z), (0.3, 0.2));
+    // Velocities across the normal untouched.
+    assert_eq!((velocities[0].y, velocities[0].z), (0.3, 0.0));
+    assert_eq!((velocities[1].y, velocities[1].z), (0.0, 0.2));
 }
 
 /// A fixed body in a group: a ball dropped into the notch between two fixed balls at once.

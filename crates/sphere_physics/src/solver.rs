@@ -2,10 +2,18 @@
 //!
 //! Every pair's first impact in the step is put in a priority queue keyed by (time, lower
 //! index, higher index), indices being body ids in small scenes and the broad phase's spatial
-//! order in large ones: deterministic either way. The earliest is resolved: both bodies are moved to that instant, an impulse is
-//! applied, and only the pairs involving those two bodies are tested again for the rest of the
-//! step. Touching chains therefore propagate one contact at a time, exactly as a sequence of
-//! collisions separated by vanishing gaps would: one ball in, one ball out.
+//! order in large ones: deterministic either way. The earliest is resolved: both bodies are
+//! moved to that instant, an impulse is applied, and only the pairs involving those two bodies
+//! are tested again for the rest of the step. Touching chains therefore propagate one contact
+//! at a time, exactly as a sequence of collisions separated by vanishing gaps would: one ball
+//! in, one ball out.
+//!
+//! Impacts at one instant that share a dynamic body are solved together
+//! ([`resolve_simultaneous`]), and so is a resting impact (restitution 0) on a body that took
+//! a resting impulse earlier at that instant, with that contact ([`InstantContacts`]): a
+//! sphere wedged between a fixed sphere and one pressing on it takes the load at once.
+//! Touching pairs closing slowly at the start of the step are resting contacts, solved
+//! together by projected Gauss–Seidel before any impact.
 
 use std::cmp::Ordering;
 

@@ -51,6 +51,9 @@ impl Coarse {
     }
 }
 
+/// How many rows a query finds before scanning them (the 27 cells around a body are nine).
+const PREFETCHED_ROWS: usize = 9;
+
 /// A cell's coordinates, absolute (cell `k` spans `[k·cell, (k+1)·cell)` on its axis).
 pub(crate) type Cell = [i32; 3];
 
@@ -241,9 +244,34 @@ impl Grid {
     /// Appends to `out` every body in the grid whose box may overlap `q` (a superset: the
     /// grid compares boxes rounded outwards to single precision).
     pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
-        self.visit_rows(q, &mut |coarse, from, to| {
-            self.collect_in(coarse, from, to, out)
+        // Find the rows first and ask for each row's first boxes, then scan: the rows lie far
+        // apart in memory, and their loads overlap instead of each waiting in turn.
+        let mut rows = [(0u32, 0u32); PREFETCHED_ROWS];
+        let mut count = 0;
+        let mut coarse = Coarse::EMPTY;
+        self.visit_rows(q, &mut |c, from, to| {
+            if count < PREFETCHED_ROWS {
+                if let Some(first) = self.boxes.get(from) {
+                    crate::solver::prefetch(first);
+                }
+                rows[count] = (from as u32, to as u32);
+                coarse = *c;
+            } else {
+                if count == PREFETCHED_ROWS {
+                    // More rows than that (a large box): scan the ones found so far first.
+                    for &(from, to) in &rows {
+                        self.collect_in(c, from as usize, to as usize, out);
+                    }
+                }
+                self.collect_in(c, from, to, out);
+            }
+            count += 1;
         });
+        if count <= PREFETCHED_ROWS {
+            for &(from, to) in &rows[..count] {
+                self.collect_in(&coarse, from as usize, to as usize, out);
+            }
+        }
     }
 
     /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the

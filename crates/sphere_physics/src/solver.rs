@@ -154,6 +154,9 @@ impl Ord for Event {
     }
 }
 
+/// How many of the first pass's pairs are found before they are tested (see `Solver::step`).
+const PAIR_BATCH: usize = 16;
+
 /// How many times [`Settings::max_collisions_per_body`] one body may take in a step (the
 /// world's budget is that setting times the dynamic bodies): 1024 by default, where a sphere
 /// at the bottom of the 100k-sphere shower benchmark's pile takes up to 381.
@@ -481,11 +484,28 @@ impl Solver {
         // Touching pairs that approach no faster than the resting speed are resting contacts,
         // solved together below; every other pair gets its time of impact.
         self.resting.clear();
+        // Pairs are tested in batches: the second body's segment is asked for as each pair is
+        // found, and read when the batch is full (rows of cells lie far apart in memory).
+        let mut batch = [(0u32, 0u32); PAIR_BATCH];
+        let mut found = 0;
+        let mut test_batch = |solver: &mut Self, batch: &[(u32, u32)]| {
+            for &(i, j) in batch {
+                let (i, j) = (i as usize, j as usize);
+                if !solver.resting_contact(i, j, ctx) {
+                    solver.test_pair(i, j, 0.0, ctx, stats);
+                }
+            }
+        };
         broad.pairs(&boxes, |i, j| {
-            if !self.resting_contact(i, j, ctx) {
-                self.test_pair(i, j, 0.0, ctx, stats);
+            prefetch(&self.segments[j]);
+            batch[found] = (i as u32, j as u32);
+            found += 1;
+            if found == PAIR_BATCH {
+                test_batch(self, &batch);
+                found = 0;
             }
         });
+        test_batch(self, &batch[..found]);
         (self.broad, self.boxes) = (broad, boxes);
         if !self.resting.is_empty() {
             self.solve_resting(ctx, stats);

@@ -54,6 +54,12 @@ impl Coarse {
 /// How many rows a query finds before scanning them (the 27 cells around a body are nine).
 const PREFETCHED_ROWS: usize = 9;
 
+/// Boxes compared at a time by [`Grid::pairs`] (a row of three cells usually holds fewer).
+const BLOCK: usize = 4;
+
+/// Partners [`Grid::pairs`] finds for a body before handing them over.
+const FOUND: usize = 64;
+
 /// A cell's coordinates, absolute (cell `k` spans `[k·cell, (k+1)·cell)` on its axis).
 pub(crate) type Cell = [i32; 3];
 
@@ -145,6 +151,8 @@ impl Grid {
         self.boxes.clear();
         self.boxes
             .extend(boxes[..self.len].iter().map(Coarse::around));
+        // Padding, so that a scan may read a whole block past any range's start.
+        self.boxes.extend(std::iter::repeat_n(Coarse::EMPTY, BLOCK));
     }
 
     /// Bodies `0..len()` are (or were, at the start of the step) the grid's.
@@ -193,23 +201,53 @@ impl Grid {
         // The forward rows of three cells (x − 1 ..= x + 1) at (y + 1, z), (y − 1, z + 1),
         // (y, z + 1) and (y + 1, z + 1), as offsets from the body's cell.
         let rows = [nx - 1, nx * ny - nx - 1, nx * ny - 1, nx * ny + nx - 1];
+        // A body's partners are found first, then handed over: finding them writes every
+        // candidate and keeps those that overlap, so no branch depends on an overlap (a coin
+        // toss the branch predictor loses).
+        let mut found = [0u32; FOUND];
         for i in 0..self.len {
             let k = self.cells[i];
             let c = (k[0] - self.origin[0]) as usize
                 + nx * ((k[1] - self.origin[1]) as usize + ny * (k[2] - self.origin[2]) as usize);
-            // Own cell (after i) and the next along x: one range. Then four rows of three.
             let bi = &boxes[i];
-            pairs_in(bi, i, boxes, i + 1, start[c + 2] as usize, f);
-            for offset in rows {
-                let row = c + offset;
-                pairs_in(
-                    bi,
-                    i,
-                    boxes,
-                    start[row] as usize,
-                    start[row + 3] as usize,
-                    f,
-                );
+            let mut kept = 0;
+            // Own cell (after i) and the next along x: one range. Then four rows of three.
+            let ranges = [
+                (i + 1, start[c + 2] as usize),
+                (start[c + rows[0]] as usize, start[c + rows[0] + 3] as usize),
+                (start[c + rows[1]] as usize, start[c + rows[1] + 3] as usize),
+                (start[c + rows[2]] as usize, start[c + rows[2] + 3] as usize),
+                (start[c + rows[3]] as usize, start[c + rows[3] + 3] as usize),
+            ];
+            for (from, to) in ranges {
+                if kept + (to - from) + BLOCK > FOUND {
+                    for &j in &found[..kept] {
+                        f(i, j as usize);
+                    }
+                    kept = 0;
+                    if (to - from) + BLOCK > FOUND {
+                        // A crowded row: one body at a time.
+                        pairs_in(bi, i, boxes, from, to, f);
+                        continue;
+                    }
+                }
+                // Whole blocks, at least one: a row of up to a block's bodies (the usual)
+                // takes one pass whatever its length.
+                let mut j = from;
+                loop {
+                    for b in 0..BLOCK {
+                        let m = j + b;
+                        found[kept] = m as u32;
+                        kept += usize::from((m < to) & boxes[m].overlaps(bi));
+                    }
+                    j += BLOCK;
+                    if j >= to {
+                        break;
+                    }
+                }
+            }
+            for &j in &found[..kept] {
+                f(i, j as usize);
             }
         }
     }

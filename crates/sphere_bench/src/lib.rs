@@ -27,6 +27,8 @@ pub struct Measurement {
     pub kinetic_after: f64,
     /// Collisions resolved (0 when the engine does not count them).
     pub collisions: u64,
+    /// Pairs handed to the time-of-impact method (our engine only; 0 for rapier).
+    pub toi_tests: u64,
     /// Largest overlap left after the last step (our engine only).
     pub max_overlap: Option<f64>,
     /// Collisions left to a later step because a step's budget ran out (our engine only; a
@@ -35,6 +37,16 @@ pub struct Measurement {
 }
 
 impl Measurement {
+    /// Collisions and time-of-impact tests per body per step: the work the scene asks of an
+    /// event-driven engine, which grows with a pile's depth.
+    pub fn work_per_body_step(&self) -> (f64, f64) {
+        let body_steps = self.bodies as f64 * f64::from(self.steps);
+        (
+            self.collisions as f64 / body_steps,
+            self.toi_tests as f64 / body_steps,
+        )
+    }
+
     /// Nanoseconds per body per step.
     pub fn ns_per_body_step(&self) -> f64 {
         self.seconds * 1e9 / (self.bodies as f64 * f64::from(self.steps))
@@ -52,7 +64,7 @@ pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64) -> Measurement {
     let mut world: World = scene.build().expect("bench scenes are valid");
     let kinetic_before = world.kinetic_energy();
     world.step(dt).expect("dt is valid");
-    let (mut collisions, mut deferred) = (0u64, 0u64);
+    let (mut collisions, mut deferred, mut toi_tests) = (0u64, 0u64, 0u64);
     let mut seconds = 0.0;
     for _ in 0..steps {
         let started = Instant::now();
@@ -60,6 +72,7 @@ pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64) -> Measurement {
         seconds += started.elapsed().as_secs_f64();
         collisions += u64::from(stats.collisions);
         deferred += u64::from(stats.collisions_deferred);
+        toi_tests += stats.toi_tests;
     }
     Measurement {
         bodies: world.len(),
@@ -68,6 +81,7 @@ pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64) -> Measurement {
         kinetic_before,
         kinetic_after: world.kinetic_energy(),
         collisions,
+        toi_tests,
         max_overlap: Some(world.max_overlap()),
         deferred,
     }
@@ -110,6 +124,7 @@ pub fn measure_rapier(scene: &SceneDesc, steps: u32, dt: f64, ccd: bool) -> Meas
         kinetic_before,
         kinetic_after: world.kinetic_energy(),
         collisions: 0,
+        toi_tests: 0,
         max_overlap: None,
         deferred: 0,
     }

@@ -108,12 +108,14 @@ fn main() {
     );
     if rapier {
         println!(
-            "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before | rapier KE after/before |"
+            "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before | rapier KE after/before | our collisions, tests /sphere/step |"
         );
-        println!("|---|---|---|---|---|---|---|---|---|");
+        println!("|---|---|---|---|---|---|---|---|---|---|");
     } else {
-        println!("| scene | N | ours (exact) | collisions/step | KE after/before | overlap left |");
-        println!("|---|---|---|---|---|---|");
+        println!(
+            "| scene | N | ours (exact) | collisions/step | KE after/before | overlap left | collisions, tests /sphere/step |"
+        );
+        println!("|---|---|---|---|---|---|---|");
     }
     for scene_name in &options.scenes {
         for &n in &options.sizes {
@@ -151,11 +153,15 @@ fn main() {
                     "-".to_owned()
                 }
             };
+            let work = |m: &Measurement| {
+                let (collisions, tests) = m.work_per_body_step();
+                format!("{collisions:.3}, {tests:.2}")
+            };
             #[cfg(feature = "rapier")]
             {
                 let (ccd, plain) = (ccd.expect("one run"), plain.expect("one run"));
                 println!(
-                    "| {scene_name} | {n} | {} | {} | {} | {:.1}x | {:.1}x | {} | {} / {} |",
+                    "| {scene_name} | {n} | {} | {} | {} | {:.1}x | {:.1}x | {} | {} / {} | {} |",
                     cell(&ours),
                     cell(&ccd),
                     cell(&plain),
@@ -164,15 +170,17 @@ fn main() {
                     ke(&ours),
                     ke(&ccd),
                     ke(&plain),
+                    work(&ours),
                 );
             }
             if !rapier {
                 println!(
-                    "| {scene_name} | {n} | {} | {:.0} | {} | {:.2e} |",
+                    "| {scene_name} | {n} | {} | {:.0} | {} | {:.2e} | {} |",
                     cell(&ours),
                     ours.collisions as f64 / f64::from(options.steps),
                     ke(&ours),
                     ours.max_overlap.unwrap_or(0.0),
+                    work(&ours),
                 );
             }
             let _ = std::io::stdout().flush();

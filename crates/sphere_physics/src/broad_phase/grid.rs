@@ -51,7 +51,9 @@ impl Coarse {
     }
 }
 
-/// How many rows a query finds before scanning them (the 27 cells around a body are nine).
+/// How many rows a query finds before scanning them: a grid body's box meets two or three
+/// cells per axis, so nine rows of three at most, unless the box is almost a cell wide (then
+/// up to sixteen, the rows past nine scanned as they are found).
 const PREFETCHED_ROWS: usize = 9;
 
 /// Boxes compared at a time by [`Grid::pairs`]: a row of three cells holds about one in the

@@ -119,14 +119,14 @@ impl Grid {
         self.within(b, k).then_some(k)
     }
 
-    /// Whether `b` lies within the envelope of cell `k`.
+    /// Whether `b` lies within the envelope of cell `k` (branch-free: it runs for every body
+    /// every step).
     #[inline]
     fn within(&self, b: &Aabb, k: Cell) -> bool {
-        (0..3).all(|a| {
-            let lo = f64::from(k[a]) * self.cell[a] - self.slack[a];
-            let hi = f64::from(k[a] + 1) * self.cell[a] + self.slack[a];
-            b.lo[a] >= lo && b.hi[a] <= hi
-        })
+        let k = DVec3::new(f64::from(k[0]), f64::from(k[1]), f64::from(k[2]));
+        let lo = k * self.cell - self.slack;
+        let hi = (k + 1.0) * self.cell + self.slack;
+        (b.lo.cmpge(lo) & b.hi.cmple(hi)).all()
     }
 
     /// Where each cell's bodies start (dense index over the block; one more for the end).

@@ -53,7 +53,7 @@ impl Coarse {
 
 /// How many rows a query finds before scanning them: a grid body's box meets two or three
 /// cells per axis, so nine rows of three at most, unless the box is almost a cell wide (then
-/// up to sixteen, the rows past nine scanned as they are found).
+/// up to sixteen, found and scanned nine at a time).
 const PREFETCHED_ROWS: usize = 9;
 
 /// Boxes compared at a time by [`Grid::pairs`]: a row of three cells holds about one in the
@@ -287,33 +287,29 @@ impl Grid {
     /// grid compares boxes rounded outwards to single precision).
     pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
         // Find the rows first and ask for each row's first boxes, then scan: the rows lie far
-        // apart in memory, and their loads overlap instead of each waiting in turn.
+        // apart in memory, and their loads overlap instead of each waiting in turn. (A large
+        // box meets more rows than that: they are scanned a batch at a time, in order.)
         let mut rows = [(0u32, 0u32); PREFETCHED_ROWS];
         let mut count = 0;
         let mut coarse = Coarse::EMPTY;
+        let scan = |rows: &[(u32, u32)], coarse: &Coarse, out: &mut Vec<u32>| {
+            for &(from, to) in rows {
+                self.collect_in(coarse, from as usize, to as usize, out);
+            }
+        };
         self.visit_rows(q, &mut |c, from, to| {
-            if count < PREFETCHED_ROWS {
-                if let Some(first) = self.boxes.get(from) {
-                    crate::solver::prefetch(first);
-                }
-                rows[count] = (from as u32, to as u32);
-                coarse = *c;
-            } else {
-                if count == PREFETCHED_ROWS {
-                    // More rows than that (a large box): scan the ones found so far first.
-                    for &(from, to) in &rows {
-                        self.collect_in(c, from as usize, to as usize, out);
-                    }
-                }
-                self.collect_in(c, from, to, out);
+            if count == PREFETCHED_ROWS {
+                scan(&rows, c, out);
+                count = 0;
             }
+            if let Some(first) = self.boxes.get(from) {
+                crate::solver::prefetch(first);
+            }
+            rows[count] = (from as u32, to as u32);
             count += 1;
+            coarse = *c;
         });
-        if count <= PREFETCHED_ROWS {
-            for &(from, to) in &rows[..count] {
-                self.collect_in(&coarse, from as usize, to as usize, out);
-            }
-        }
+        scan(&rows[..count], &coarse, out);
     }
 
     /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the

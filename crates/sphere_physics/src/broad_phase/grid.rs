@@ -267,18 +267,23 @@ impl Grid {
         }
     }
 
-    /// Appends to `out` every body in `from..to` still in the grid whose box overlaps `q`,
-    /// without a branch per box (whether a box overlaps is a coin toss the branch predictor
-    /// loses): each index is written, and kept by advancing past it only if it overlaps.
+    /// Appends to `out` every body in the given rows (ranges of bodies) still in the grid
+    /// whose box overlaps `q`, without a branch per box (whether a box overlaps is a coin toss
+    /// the branch predictor loses): each index is written, and kept by advancing past it only
+    /// if it overlaps. `out` grows once for all the rows.
     #[inline]
-    fn collect_in(&self, q: &Coarse, from: usize, to: usize, out: &mut Vec<u32>) {
+    fn collect_in(&self, q: &Coarse, rows: &[(u32, u32)], out: &mut Vec<u32>) {
         let base = out.len();
-        out.resize(base + (to - from), 0);
+        let total: u32 = rows.iter().map(|&(from, to)| to - from).sum();
+        out.resize(base + total as usize, 0);
         let slots = &mut out[base..];
         let mut kept = 0;
-        for (offset, bj) in self.boxes[from..to].iter().enumerate() {
-            slots[kept] = (from + offset) as u32;
-            kept += usize::from(bj.overlaps(q));
+        for &(from, to) in rows {
+            let (from, to) = (from as usize, to as usize);
+            for (offset, bj) in self.boxes[from..to].iter().enumerate() {
+                slots[kept] = (from + offset) as u32;
+                kept += usize::from(bj.overlaps(q));
+            }
         }
         out.truncate(base + kept);
     }
@@ -293,9 +298,7 @@ impl Grid {
         let mut count = 0;
         let mut coarse = Coarse::EMPTY;
         let scan = |rows: &[(u32, u32)], coarse: &Coarse, out: &mut Vec<u32>| {
-            for &(from, to) in rows {
-                self.collect_in(coarse, from as usize, to as usize, out);
-            }
+            self.collect_in(coarse, rows, out);
         };
         self.visit_rows(q, &mut |c, from, to| {
             if count == PREFETCHED_ROWS {

@@ -73,6 +73,8 @@ pub(crate) struct Hierarchy {
     keys: Vec<CellKey>,
     /// Bodies per level (sorted and overlay).
     level_counts: Vec<u32>,
+    /// Bit `L` set when level `L` holds a body: a query visits only those levels.
+    occupied: u64,
     /// The largest box on each level (at most its cell): a body overlapping a query box has its
     /// lower corner at most this far below the query's.
     level_extents: Vec<f64>,
@@ -140,6 +142,7 @@ impl Hierarchy {
         }
         self.level_counts.clear();
         self.level_counts.resize(LEVELS, 0);
+        self.occupied = 0;
         self.level_extents.clear();
         self.level_extents.resize(LEVELS, 0.0);
         self.overlay_level_counts.clear();
@@ -163,7 +166,7 @@ impl Hierarchy {
             if self.members[key.level as usize].len() <= FEW {
                 self.members[key.level as usize].push(i as u32);
             }
-            self.level_counts[key.level as usize] += 1;
+            self.count_in(key.level);
             let extent = &mut self.level_extents[key.level as usize];
             *extent = extent.max(b.extent());
             let bucket = self.bucket(&key);
@@ -261,7 +264,7 @@ impl Hierarchy {
             self.stamp[i] = self.epoch;
             self.in_overlay[i] = true;
             self.keys[i] = key;
-            self.level_counts[key.level as usize] += 1;
+            self.count_in(key.level);
             self.add_member(i, key.level);
             self.overlay_insert(i as u32);
             return;
@@ -281,11 +284,25 @@ impl Hierarchy {
             }
             self.overlay_remove(i as u32);
         }
-        self.level_counts[self.keys[i].level as usize] -= 1;
+        self.count_out(self.keys[i].level);
         self.keys[i] = key;
-        self.level_counts[key.level as usize] += 1;
+        self.count_in(key.level);
         self.add_member(i, key.level);
         self.overlay_insert(i as u32);
+    }
+
+    /// One more body on `level`.
+    fn count_in(&mut self, level: u32) {
+        self.level_counts[level as usize] += 1;
+        self.occupied |= 1 << level;
+    }
+
+    /// One body fewer on `level`.
+    fn count_out(&mut self, level: u32) {
+        self.level_counts[level as usize] -= 1;
+        if self.level_counts[level as usize] == 0 {
+            self.occupied &= !(1 << level);
+        }
     }
 
     fn add_member(&mut self, i: usize, level: u32) {
@@ -411,11 +428,19 @@ impl Hierarchy {
 
     /// Calls `f(j)` for every body `j` at a level in `levels` whose box may overlap `q`.
     fn visit(&self, q: &Aabb, levels: std::ops::Range<usize>, f: &mut impl FnMut(usize)) {
-        for level in levels {
-            let count = self.level_counts[level];
-            if count == 0 {
-                continue;
+        // The occupied levels within `levels`, lowest first.
+        let below = |end: usize| {
+            if end >= 64 {
+                u64::MAX
+            } else {
+                (1u64 << end) - 1
             }
+        };
+        let mut left = self.occupied & below(levels.end) & !below(levels.start);
+        while left != 0 {
+            let level = left.trailing_zeros() as usize;
+            left &= left - 1;
+            let count = self.level_counts[level];
             let members = &self.members[level];
             if members.len() <= FEW && count as usize <= members.len() {
                 // Every body on this level is in the list: test them directly.

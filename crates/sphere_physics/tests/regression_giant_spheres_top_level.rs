@@ -6,14 +6,20 @@
 
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
-#[test]
-fn regression_spheres_beyond_the_top_level_still_collide() {
+/// A world without gravity holding 200 small spheres at rest, which set the typical box
+/// (0.1 m): the top level's cells are 0.1 · 2^40 m.
+fn small_spheres() -> World {
     let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
-    // Small spheres set the typical box (0.1 m): the top level's cells are 0.1 · 2^40 m.
     for i in 0..200 {
         let at = DVec3::new(f64::from(i % 10), f64::from(i / 10), 0.0) * 0.5;
         world.add_sphere(SphereDesc::new(0.05).at(at)).unwrap();
     }
+    world
+}
+
+#[test]
+fn regression_spheres_beyond_the_top_level_still_collide() {
+    let mut world = small_spheres();
     // Twenty spheres of radius 1e11 m (boxes of 2e11 m, more than the top cell's 1.1e11 m)
     // in pairs along x, each pair 1 km apart and closing at 2e6 m/s: they meet 5e-4 s in.
     let radius = 1e11;
@@ -59,11 +65,7 @@ fn regression_spheres_beyond_the_top_level_still_collide() {
 /// left one lies two top cells below the middle one, beyond the reach a query had.
 #[test]
 fn regression_a_re_query_finds_spheres_beyond_the_top_level() {
-    let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
-    for i in 0..200 {
-        let at = DVec3::new(f64::from(i % 10), f64::from(i / 10), 0.0) * 0.5;
-        world.add_sphere(SphereDesc::new(0.05).at(at)).unwrap();
-    }
+    let mut world = small_spheres();
     let radius = 1e11;
     let spacing = 2.0 * radius + 1000.0;
     let top_cell = 0.1 * 2f64.powi(40);

@@ -7,25 +7,15 @@
 
 mod common;
 
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+use sphere_physics::glam::DVec3;
 
 #[test]
 fn a_sheet_settling_at_one_instant_stops_every_sphere_where_it_lands() {
     let n = 120;
-    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-    let mut balls = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
-            let floor = DVec3::new(i as f64 * 1.5, 0.0, j as f64 * 1.5);
-            world
-                .add_sphere(SphereDesc::new(0.5).at(floor).fixed())
-                .unwrap();
-            // At rest 1 mm above: gravity's kick brings it down at 0.16 m/s, under the resting
-            // speed (1.5 · g · dt = 0.25 m/s).
-            let ball = SphereDesc::new(0.5).at(floor + DVec3::Y * 1.001);
-            balls.push(world.add_sphere(ball).unwrap());
-        }
-    }
+    // At rest 1 mm above: gravity's kick brings it down at 0.16 m/s, under the resting speed
+    // (1.5 · g · dt = 0.25 m/s).
+    let (mut world, balls) =
+        common::sheet_over_floors(n, DVec3::new(0.0, -9.81, 0.0), 1.001, DVec3::ZERO);
     let dt = 1.0 / 60.0;
     let stats = *world.step(dt).unwrap();
     assert_eq!(stats.collisions as usize, n * n);

@@ -1,9 +1,9 @@
 //! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
-//! cases it found, and the creep allowance.
+//! cases it found, the creep allowance, and a sheet of spheres over fixed ones.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+use sphere_physics::{BodyId, Settings, SphereDesc, World, glam::DVec3};
 
 /// One sphere as the property draws it: velocity (x, y, z), radius, density, restitution, and
 /// a jitter along (1, 1, 1).
@@ -36,4 +36,30 @@ pub fn rain_on_a_dome(drops: &[Drop]) -> World {
 pub fn creep(world: &World, dt: f64) -> f64 {
     let settings = world.settings();
     settings.creep_fraction * settings.resting_factor * 9.81 * dt * dt
+}
+
+/// An `n` × `n` sheet of spheres of radius 0.5, 1.5 m apart, each `lift` above its own fixed
+/// sphere of radius 0.5 (centre to centre) and moving at `velocity`, in a world with
+/// `gravity`. Returns the world and the sheet's ids.
+pub fn sheet_over_floors(
+    n: usize,
+    gravity: DVec3,
+    lift: f64,
+    velocity: DVec3,
+) -> (World, Vec<BodyId>) {
+    let mut world = World::new(Settings::with_gravity(gravity));
+    let mut balls = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let floor = DVec3::new(i as f64 * 1.5, 0.0, j as f64 * 1.5);
+            world
+                .add_sphere(SphereDesc::new(0.5).at(floor).fixed())
+                .unwrap();
+            let ball = SphereDesc::new(0.5)
+                .at(floor + DVec3::Y * lift)
+                .moving(velocity);
+            balls.push(world.add_sphere(ball).unwrap());
+        }
+    }
+    (world, balls)
 }

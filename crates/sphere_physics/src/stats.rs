@@ -11,15 +11,19 @@ pub struct StepStats {
     pub time: f64,
     /// Length of the step.
     pub dt: f64,
-    /// Collisions resolved (impulses applied), resting contacts included.
+    /// Contacts resolved, resting contacts included: one per record in
+    /// [`World::collisions`](crate::World::collisions). A contact of a simultaneous group that
+    /// needed no impulse counts (its record's impulse is 0), and a resting contact solved again
+    /// at the same instant, together with a later impact it joins, counts again.
     pub collisions: u32,
     /// Of those, collisions slower than the relative acceleration gains in
     /// [`Settings::resting_factor`](crate::Settings::resting_factor) steps, resolved with
     /// restitution 0 so that bodies at rest stay at rest.
     pub resting_contacts: u32,
-    /// Collisions found but not resolved because the step's budget
-    /// ([`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)) ran out.
-    /// Non-zero means the step was cut short: bodies may be left overlapping until the next step.
+    /// Impacts found but not resolved because the step's budget
+    /// ([`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)) ran out
+    /// (an impact found again after one of its bodies changed counts again). Non-zero means the
+    /// step was cut short: bodies may be left overlapping until the next step.
     pub collisions_deferred: u32,
     /// Pairs handed to the time-of-impact method.
     pub toi_tests: u64,

@@ -73,6 +73,33 @@ proptest! {
         }
     }
 
+    /// Every contact the step counts has its record, and every record is well formed: ids in
+    /// order, a time within the step (records in time order), a unit normal, an impulse >= 0.
+    #[test]
+    fn collision_records_match_the_stats(spheres in scene(), dt in 0.005..0.05f64) {
+        let mut world = common::rain_on_a_dome(&spheres);
+        for step in 0..60 {
+            let start = world.time();
+            let stats = *world.step(dt).unwrap();
+            let records = world.collisions();
+            prop_assert_eq!(stats.collisions as usize, records.len(), "step {}", step);
+            prop_assert_eq!(
+                stats.resting_contacts as usize,
+                records.iter().filter(|c| c.resting).count(),
+                "step {}", step
+            );
+            let slack = 1e-12 * (1.0 + stats.time.abs());
+            let mut last = start - slack;
+            for c in records {
+                prop_assert!(c.a < c.b, "step {step}: {c:?}");
+                prop_assert!(c.time >= last && c.time <= stats.time + slack, "step {step}: {c:?}");
+                prop_assert!((c.normal.length() - 1.0).abs() < 1e-12, "step {step}: {c:?}");
+                prop_assert!(c.impulse.is_finite() && c.impulse >= 0.0, "step {step}: {c:?}");
+                last = c.time;
+            }
+        }
+    }
+
     #[test]
     fn deterministic(spheres in scene()) {
         let run = || {

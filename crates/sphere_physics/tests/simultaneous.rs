@@ -55,6 +55,47 @@ fn wedge_strike_is_symmetric_and_matches_the_analytic_answer() {
 
 /// Two balls strike a resting ball from both sides at the same instant: both bounce back at
 /// their speed and the middle ball stays put.
+/// A ball strikes a fixed ball head-on and, at the same instant, reaches a free ball at 45°.
+/// Solved together (e = 1), the fixed ball turns the striker straight back, which takes it
+/// away from the free ball: that contact needs no impulse. Both contacts are recorded, the
+/// second with impulse 0, and the step counts both.
+#[test]
+fn a_contact_of_a_group_that_needs_no_impulse_is_recorded_and_counted() {
+    let mut world = World::new(Settings::default());
+    let striker = world
+        .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
+        .unwrap();
+    // At t = 0.5 the striker is at x = 0.5: touching the fixed ball at x = 1.5, and the free
+    // ball one diameter away along (1, 1, 0) / √2.
+    let fixed = world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(1.5, 0.0, 0.0)).fixed())
+        .unwrap();
+    let d = 0.5f64.sqrt();
+    let free = world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.5 + d, d, 0.0)))
+        .unwrap();
+    let stats = *world.step(1.0).unwrap();
+    let v = |id| world.body(id).unwrap().velocity();
+    assert!(close(v(striker), -DVec3::X, 1e-12), "{}", v(striker));
+    assert!(close(v(free), DVec3::ZERO, 1e-12), "{}", v(free));
+    let records = world.collisions();
+    assert_eq!(stats.collisions as usize, records.len());
+    assert_eq!(records.len(), 2, "{records:?}");
+    for r in records {
+        assert!((r.time - 0.5).abs() < 1e-12, "{r:?}");
+        let other = if r.a == striker { r.b } else { r.a };
+        if other == fixed {
+            assert!(
+                (r.impulse - 2.0 * world.body(striker).unwrap().mass()).abs() < 1e-9,
+                "{r:?}"
+            );
+        } else {
+            assert_eq!(other, free);
+            assert_eq!(r.impulse, 0.0, "{r:?}");
+        }
+    }
+}
+
 #[test]
 fn pincer_strike_leaves_the_middle_ball_at_rest() {
     let mut world = World::new(Settings::default());

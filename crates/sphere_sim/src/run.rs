@@ -144,11 +144,13 @@ impl Snapshot {
 /// Statistics of a whole run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunStats {
-    /// Collisions resolved over the run (resting contacts included).
+    /// Collisions resolved over the run, as `StepStats::collisions` counts them (resting
+    /// contacts included).
     pub collisions: u64,
     /// Of those, resolved as resting contacts (restitution 0).
     pub resting_contacts: u64,
-    /// Collisions left to the next step by the per-step budget.
+    /// Impacts left to the next step by the per-step budget
+    /// (`StepStats::collisions_deferred`).
     pub collisions_deferred: u64,
     /// Time-of-impact tests.
     pub toi_tests: u64,

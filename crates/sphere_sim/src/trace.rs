@@ -18,11 +18,12 @@ pub struct TraceRow {
     pub time: f64,
     /// The step's length.
     pub dt: f64,
-    /// Collisions resolved in the step.
+    /// Collisions resolved in the step, as `StepStats::collisions` counts them (one per
+    /// collision record).
     pub collisions: u32,
     /// Of those, resting contacts.
     pub resting_contacts: u32,
-    /// Collisions deferred to the next step.
+    /// Impacts deferred to the next step (`StepStats::collisions_deferred`).
     pub collisions_deferred: u32,
     /// Kinetic energy.
     pub kinetic_energy: f64,

@@ -10,7 +10,7 @@ pub mod svg;
 
 use std::time::Instant;
 
-use sphere_physics::{SceneDesc, World};
+use sphere_physics::{SceneDesc, StepProfile, World};
 
 /// What one engine did on one scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,6 +34,8 @@ pub struct Measurement {
     /// Collisions left to a later step because a step's budget ran out (our engine only; a
     /// run that defers any did less than the scene asked).
     pub deferred: u64,
+    /// Our step's phases, summed over the timed steps (when measured with profiling on).
+    pub phases: Option<StepProfile>,
 }
 
 impl Measurement {
@@ -52,6 +54,24 @@ impl Measurement {
         self.seconds * 1e9 / (self.bodies as f64 * f64::from(self.steps))
     }
 
+    /// Nanoseconds per body per step in each of our step's phases, named, if profiled.
+    pub fn phases_per_body_step(&self) -> Option<[(&'static str, f64); 9]> {
+        let p = self.phases?;
+        let body_steps = self.bodies as f64 * f64::from(self.steps);
+        let ns = |d: std::time::Duration| d.as_secs_f64() * 1e9 / body_steps;
+        Some([
+            ("integrate", ns(p.integrate)),
+            ("sort", ns(p.sort)),
+            ("build", ns(p.build)),
+            ("first pass", ns(p.first_pass)),
+            ("resting", ns(p.resting)),
+            ("events", ns(p.events)),
+            ("write-back", ns(p.write_back)),
+            ("overlap", ns(p.overlap)),
+            ("all", ns(p.total())),
+        ])
+    }
+
     /// Steps per second.
     pub fn steps_per_second(&self) -> f64 {
         f64::from(self.steps) / self.seconds
@@ -59,13 +79,16 @@ impl Measurement {
 }
 
 /// Steps `scene` with our engine: one step of `dt` untimed (warming up, as for rapier), then
-/// `steps` steps, each timed.
-pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64) -> Measurement {
+/// `steps` steps, each timed, and with `profile` each step's phases too (a few clock reads
+/// per step).
+pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64, profile: bool) -> Measurement {
     let mut world: World = scene.build().expect("bench scenes are valid");
+    world.set_profiling(profile);
     let kinetic_before = world.kinetic_energy();
     world.step(dt).expect("dt is valid");
     let (mut collisions, mut deferred, mut toi_tests) = (0u64, 0u64, 0u64);
     let mut seconds = 0.0;
+    let mut phases = profile.then(StepProfile::default);
     for _ in 0..steps {
         let started = Instant::now();
         let stats = world.step(dt).expect("dt is valid");
@@ -73,6 +96,9 @@ pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64) -> Measurement {
         collisions += u64::from(stats.collisions);
         deferred += u64::from(stats.collisions_deferred);
         toi_tests += stats.toi_tests;
+        if let (Some(sum), Some(step)) = (&mut phases, world.profile()) {
+            *sum += *step;
+        }
     }
     Measurement {
         bodies: world.len(),
@@ -84,6 +110,7 @@ pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64) -> Measurement {
         toi_tests,
         max_overlap: Some(world.max_overlap()),
         deferred,
+        phases,
     }
 }
 
@@ -127,5 +154,6 @@ pub fn measure_rapier(scene: &SceneDesc, steps: u32, dt: f64, ccd: bool) -> Meas
         toi_tests: 0,
         max_overlap: None,
         deferred: 0,
+        phases: None,
     }
 }

@@ -2,13 +2,16 @@
 //! several sizes, ours against rapier3d 0.36 (with `--features rapier`), as a markdown table.
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
-//!         [--steps 60] [--scenes shower,gas] [--repeat 1]
+//!         [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step), then
 //! times each of `--steps` steps. With `--repeat N` each engine runs each scene N times, the
 //! engines taking turns (ours, rapier with CCD, rapier without, then again), and the fastest
 //! run of each is reported: on a shared machine the least disturbed run is the best estimate
 //! of the cost, and taking turns spreads any drift of the machine over all three.
+//!
+//! With `--phases` our engine also times its step's phases (`World::set_profiling`), and a
+//! second table gives each phase's ns per sphere per step in the fastest run.
 
 use std::io::Write;
 
@@ -21,6 +24,7 @@ struct Options {
     steps: u32,
     scenes: Vec<String>,
     repeat: u32,
+    phases: bool,
 }
 
 fn parse() -> Result<Options, String> {
@@ -29,6 +33,7 @@ fn parse() -> Result<Options, String> {
         steps: 60,
         scenes: vec!["shower".into(), "gas".into()],
         repeat: 1,
+        phases: false,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut it = args.iter();
@@ -65,9 +70,10 @@ fn parse() -> Result<Options, String> {
                     return Err(format!("unknown scene '{bad}' (shower, gas)"));
                 }
             }
+            "--phases" => options.phases = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas] [--repeat 1]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases]"
                 );
                 std::process::exit(0);
             }
@@ -117,6 +123,7 @@ fn main() {
         );
         println!("|---|---|---|---|---|---|---|");
     }
+    let mut phase_rows = Vec::new();
     for scene_name in &options.scenes {
         for &n in &options.sizes {
             let scene = if scene_name == "shower" {
@@ -128,7 +135,10 @@ fn main() {
             #[cfg(feature = "rapier")]
             let (mut ccd, mut plain) = (None, None);
             for _ in 0..options.repeat.max(1) {
-                keep_faster(&mut ours, measure_ours(&scene, options.steps, DT));
+                keep_faster(
+                    &mut ours,
+                    measure_ours(&scene, options.steps, DT, options.phases),
+                );
                 #[cfg(feature = "rapier")]
                 {
                     let rapier = sphere_bench::measure_rapier;
@@ -137,6 +147,10 @@ fn main() {
                 }
             }
             let ours = ours.expect("at least one run");
+            if let Some(phases) = ours.phases_per_body_step() {
+                let cells: Vec<String> = phases.iter().map(|(_, ns)| format!("{ns:.0}")).collect();
+                phase_rows.push(format!("| {scene_name} | {n} | {} |", cells.join(" | ")));
+            }
             if ours.deferred > 0 {
                 eprintln!(
                     "sphere-bench: warning: {scene_name} {n}: {} collisions deferred to later \
@@ -184,6 +198,16 @@ fn main() {
                 );
             }
             let _ = std::io::stdout().flush();
+        }
+    }
+    if !phase_rows.is_empty() {
+        println!("\nOur step's phases, ns per sphere per step (fastest run):\n");
+        println!(
+            "| scene | N | integrate | sort | build | first pass | resting | events | write-back | overlap | all |"
+        );
+        println!("|---|---|---|---|---|---|---|---|---|---|---|");
+        for row in phase_rows {
+            println!("{row}");
         }
     }
 }

@@ -57,7 +57,7 @@ pub use glam;
 pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};
 pub use response::{CombineRule, GroupContact, Resolution, resolve, resolve_simultaneous};
 pub use scene::{SceneDesc, SceneError, SphereSpec};
-pub use stats::{Collision, StepStats};
+pub use stats::{Collision, StepProfile, StepStats};
 pub use toi::{Bisection, ExactToi, TimeOfImpact, ToiMethod, ToiOutcome};
 pub use tolerance::Tolerance;
 pub use world::{

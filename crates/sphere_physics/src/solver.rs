@@ -23,7 +23,7 @@ use crate::broad_phase::{Aabb, BroadPhase};
 use crate::instant::InstantContacts;
 use crate::queue::{EventQueue, Timed};
 use crate::response::{GroupContact, resolve, resolve_simultaneous};
-use crate::{Body, Collision, Integrator, Settings, StepStats, Tether, TimeOfImpact};
+use crate::{Body, Collision, Integrator, Settings, StepProfile, StepStats, Tether, TimeOfImpact};
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
 /// Only what pair tests read, in one cache line, so the event loop's random reads stay small;
@@ -206,6 +206,10 @@ pub(crate) struct Solver {
     /// and is refused before anything is written back.
     unbounded: Option<usize>,
     pub collisions: Vec<Collision>,
+    /// Whether to time the step's phases into `profile`.
+    pub profiling: bool,
+    /// The phases' wall time, summed over the world step's substeps (while `profiling`).
+    pub profile: StepProfile,
     /// Pairs whose impact at `settled_time` gave no impulse, with both bodies' versions after
     /// it: at that instant they do not approach, though a string's bent drift may say they do
     /// (it is a chord; at an impact a sphere moves freely or along its swing). A new impact of
@@ -368,6 +372,25 @@ pub(crate) struct StepContext<'a> {
     pub start_time: f64,
 }
 
+/// Times a step's phases one after the other, when asked to (a clock read per phase).
+struct Laps(Option<std::time::Instant>);
+
+impl Laps {
+    fn start(on: bool) -> Self {
+        Laps(on.then(std::time::Instant::now))
+    }
+
+    /// Adds the time since the last lap to `phase`.
+    #[inline]
+    fn lap(&mut self, phase: &mut std::time::Duration) {
+        if let Some(last) = &mut self.0 {
+            let now = std::time::Instant::now();
+            *phase += now - *last;
+            *last = now;
+        }
+    }
+}
+
 impl Solver {
     /// Advances `bodies` (all live, in id order) by `ctx.dt`, filling the collision counters,
     /// energies and momentum of `stats`, and `self.collisions`. If a body's drift would leave
@@ -379,6 +402,7 @@ impl Solver {
         ctx: &StepContext<'_>,
         stats: &mut StepStats,
     ) -> Result<(), usize> {
+        let mut laps = Laps::start(self.profiling);
         let dt = ctx.dt;
         let settings = ctx.settings;
         self.tested.clear();
@@ -461,6 +485,7 @@ impl Solver {
             std::mem::take(&mut self.broad),
             std::mem::take(&mut self.boxes),
         );
+        laps.lap(&mut self.profile.integrate);
         // Work in the broad phase's spatial order: neighbours in space are neighbours in memory.
         let mut boxes = boxes;
         self.order.clear();
@@ -478,7 +503,9 @@ impl Solver {
             }
             None => self.order.extend(0..self.segments.len() as u32),
         }
+        laps.lap(&mut self.profile.sort);
         broad.build(&boxes);
+        laps.lap(&mut self.profile.build);
         self.versions.clear();
         self.versions.resize(self.segments.len(), 0);
         // Touching pairs that approach no faster than the resting speed are resting contacts,
@@ -507,10 +534,12 @@ impl Solver {
         });
         test_batch(self, &batch[..found]);
         (self.broad, self.boxes) = (broad, boxes);
+        laps.lap(&mut self.profile.first_pass);
         if !self.resting.is_empty() {
             self.solve_resting(ctx, stats);
             self.requery_touched(0.0, ctx, stats);
         }
+        laps.lap(&mut self.profile.resting);
 
         self.instant.start(f64::NEG_INFINITY, self.segments.len());
         let budget = settings
@@ -612,6 +641,7 @@ impl Solver {
             self.requery_touched(event.time, ctx, stats);
         }
 
+        laps.lap(&mut self.profile.events);
         if let Some(k) = self.unbounded {
             return Err(self.order[k] as usize);
         }
@@ -656,6 +686,7 @@ impl Solver {
         stats.kinetic_energy = kinetic;
         stats.potential_energy = potential;
         stats.momentum = momentum;
+        laps.lap(&mut self.profile.write_back);
         // Two bodies overlapping now had overlapping boxes when either last changed, so they
         // were tested then, with the drifts they ended on, which ended them overlapping (give
         // or take rounding, allowed for generously): the tested pairs are enough to find the
@@ -669,6 +700,7 @@ impl Solver {
                 reach - (self.finals[j] - self.finals[i]).length()
             })
             .fold(0.0, f64::max);
+        laps.lap(&mut self.profile.overlap);
         Ok(())
     }
 

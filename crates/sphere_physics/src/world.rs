@@ -8,7 +8,7 @@ use crate::contact::{ContactKind, Kinematics, classify};
 use crate::solver::{Solver, StepContext};
 use crate::{
     Body, BodyError, BodyId, Collision, CombineRule, Integrator, IntegratorKind, SphereDesc,
-    StepStats, TimeOfImpact, ToiMethod, Tolerance,
+    StepProfile, StepStats, TimeOfImpact, ToiMethod, Tolerance,
 };
 
 /// World settings. Plain data: change them between steps through [`World::settings_mut`].
@@ -226,6 +226,19 @@ impl World {
         &mut self.settings
     }
 
+    /// Turns timing of each step's phases on or off (off by default): see
+    /// [`World::profile`].
+    pub fn set_profiling(&mut self, on: bool) {
+        self.solver.profiling = on;
+        self.solver.profile = StepProfile::default();
+    }
+
+    /// Wall time of the last step's phases, while profiling is on (see
+    /// [`World::set_profiling`]); `None` when it is off.
+    pub fn profile(&self) -> Option<&StepProfile> {
+        self.solver.profiling.then_some(&self.solver.profile)
+    }
+
     /// Replaces the integrator chosen in the settings with a custom one.
     pub fn set_integrator(&mut self, integrator: Box<dyn Integrator>) {
         self.integrator = Some(integrator);
@@ -381,6 +394,7 @@ impl World {
             });
         }
         self.solver.collisions.clear();
+        self.solver.profile = StepProfile::default();
         self.rollback.clear();
         if substeps > 1 {
             self.rollback

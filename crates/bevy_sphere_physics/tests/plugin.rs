@@ -242,6 +242,42 @@ fn despawning_a_sphere_mid_simulation_removes_it() {
     );
 }
 
+/// The core's step profiling, reached through the world resource as the README says: each
+/// step's phases, the collision's included.
+#[test]
+fn a_game_reads_the_core_step_profile() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    head_on_pair(&mut app);
+    let profile = |app: &App| {
+        app.world()
+            .resource::<SpherePhysicsWorld>()
+            .world
+            .profile()
+            .copied()
+    };
+    run_steps(&mut app, 1);
+    assert_eq!(profile(&app), None, "off by default");
+    app.world_mut()
+        .resource_mut::<SpherePhysicsWorld>()
+        .world
+        .set_profiling(true);
+    let mut events = Duration::ZERO;
+    // They meet after 3 s (192 steps of 1/64 s).
+    for _ in 0..200 {
+        run_steps(&mut app, 1);
+        let p = profile(&app).expect("profiling is on");
+        assert!(p.integrate > Duration::ZERO && p.total() >= p.integrate);
+        events += p.events;
+    }
+    assert_eq!(
+        app.world()
+            .resource::<SpherePhysicsDiagnostics>()
+            .collisions,
+        1
+    );
+    assert!(events > Duration::ZERO);
+}
+
 #[derive(Resource, Default)]
 struct Rejections(Vec<SphereRejected>);
 

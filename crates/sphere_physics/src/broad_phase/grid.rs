@@ -315,6 +315,59 @@ impl Grid {
         scan(&rows[..count], &coarse, out);
     }
 
+    /// [`Grid::collect_in`] for two query boxes at once: each box of the rows is compared
+    /// with both, and kept in each list it overlaps.
+    #[inline]
+    fn collect_both_in(
+        &self,
+        (qa, qb): (&Coarse, &Coarse),
+        rows: &[(u32, u32)],
+        (out_a, out_b): (&mut Vec<u32>, &mut Vec<u32>),
+    ) {
+        let (base_a, base_b) = (out_a.len(), out_b.len());
+        let total: u32 = rows.iter().map(|&(from, to)| to - from).sum();
+        out_a.resize(base_a + total as usize, 0);
+        out_b.resize(base_b + total as usize, 0);
+        let (slots_a, slots_b) = (&mut out_a[base_a..], &mut out_b[base_b..]);
+        let (mut kept_a, mut kept_b) = (0, 0);
+        for &(from, to) in rows {
+            let (from, to) = (from as usize, to as usize);
+            for (offset, bj) in self.boxes[from..to].iter().enumerate() {
+                let index = (from + offset) as u32;
+                slots_a[kept_a] = index;
+                kept_a += usize::from(bj.overlaps(qa));
+                slots_b[kept_b] = index;
+                kept_b += usize::from(bj.overlaps(qb));
+            }
+        }
+        out_a.truncate(base_a + kept_a);
+        out_b.truncate(base_b + kept_b);
+    }
+
+    /// [`Grid::collect`] for two boxes at once (`a`'s candidates into `out_a`, `b`'s into
+    /// `out_b`), scanning the rows around both once.
+    pub fn collect_both(&self, a: &Aabb, b: &Aabb, out_a: &mut Vec<u32>, out_b: &mut Vec<u32>) {
+        let both = Aabb {
+            lo: a.lo.min(b.lo),
+            hi: a.hi.max(b.hi),
+        };
+        let (qa, qb) = (Coarse::around(a), Coarse::around(b));
+        let mut rows = [(0u32, 0u32); PREFETCHED_ROWS];
+        let mut count = 0;
+        self.visit_rows(&both, &mut |_, from, to| {
+            if count == PREFETCHED_ROWS {
+                self.collect_both_in((&qa, &qb), &rows, (out_a, out_b));
+                count = 0;
+            }
+            if let Some(first) = self.boxes.get(from) {
+                crate::solver::prefetch(first);
+            }
+            rows[count] = (from as u32, to as u32);
+            count += 1;
+        });
+        self.collect_both_in((&qa, &qb), &rows[..count], (out_a, out_b));
+    }
+
     /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the
     /// grid compares boxes rounded outwards to single precision).
     pub fn visit(&self, q: &Aabb, f: &mut impl FnMut(usize)) {

@@ -287,6 +287,34 @@ impl BroadPhase {
             .overlapping(i, &boxes[i], boxes, |j| out.push(j as u32));
     }
 
+    /// [`BroadPhase::collect_overlapping`] for two bodies at once, `i`'s candidates into
+    /// `out_i` and `j`'s into `out_j` (the same sets), scanning the grid once for both: for
+    /// bodies side by side, whose queries read nearly the same rows.
+    pub fn collect_overlapping_both(
+        &self,
+        (i, j): (usize, usize),
+        boxes: &[Aabb],
+        out_i: &mut Vec<u32>,
+        out_j: &mut Vec<u32>,
+    ) {
+        if self.brute {
+            self.overlapping(i, boxes, |m| out_i.push(m as u32));
+            self.overlapping(j, boxes, |m| out_j.push(m as u32));
+            return;
+        }
+        let (from_i, from_j) = (out_i.len(), out_j.len());
+        self.grid.collect_both(&boxes[i], &boxes[j], out_i, out_j);
+        for (out, from, k) in [(&mut *out_i, from_i, i), (&mut *out_j, from_j, j)] {
+            if let Some(at) = out[from..].iter().position(|&m| m as usize == k) {
+                out.remove(from + at);
+            }
+        }
+        self.hierarchy
+            .overlapping(i, &boxes[i], boxes, |m| out_i.push(m as u32));
+        self.hierarchy
+            .overlapping(j, &boxes[j], boxes, |m| out_j.push(m as u32));
+    }
+
     /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s (`boxes` current).
     pub fn overlapping(&self, i: usize, boxes: &[Aabb], mut f: impl FnMut(usize)) {
         let bi = &boxes[i];

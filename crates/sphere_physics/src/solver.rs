@@ -720,8 +720,8 @@ impl Solver {
             candidates.clear();
             // Two bodies that just struck each other (next to each other in `touched`) lie side
             // by side, so their queries read nearly the same grid rows: one scan finds the
-            // candidates of both (the 10k shower runs 2% fewer instructions, and every
-            // benchmark 2% to 8% faster).
+            // candidates of both (the 10k shower runs 2% fewer instructions, and each
+            // benchmark 1% to 10% faster).
             let partner = self
                 .touched
                 .get(ti + 1)

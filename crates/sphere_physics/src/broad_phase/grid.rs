@@ -288,21 +288,19 @@ impl Grid {
         out.truncate(base + kept);
     }
 
-    /// Appends to `out` every body in the grid whose box may overlap `q` (a superset: the
-    /// grid compares boxes rounded outwards to single precision).
-    pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
-        // Find the rows first and ask for each row's first boxes, then scan: the rows lie far
-        // apart in memory, and their loads overlap instead of each waiting in turn. (A large
-        // box meets more rows than that: they are scanned a batch at a time, in order.)
+    /// Calls `scan` with `q` rounded outwards and the ranges of grid bodies whose cells'
+    /// envelopes may meet `q`: found first and handed over nine at a time, each row's first
+    /// boxes asked for as it is found, since the rows lie far apart in memory and their loads
+    /// then overlap instead of each waiting in turn. (A large box meets more rows than nine:
+    /// they come a batch at a time, in order.)
+    #[inline]
+    fn scan_rows(&self, q: &Aabb, scan: &mut impl FnMut(&Coarse, &[(u32, u32)])) {
         let mut rows = [(0u32, 0u32); PREFETCHED_ROWS];
         let mut count = 0;
         let mut coarse = Coarse::EMPTY;
-        let scan = |rows: &[(u32, u32)], coarse: &Coarse, out: &mut Vec<u32>| {
-            self.collect_in(coarse, rows, out);
-        };
         self.visit_rows(q, &mut |c, from, to| {
             if count == PREFETCHED_ROWS {
-                scan(&rows, c, out);
+                scan(c, &rows);
                 count = 0;
             }
             if let Some(first) = self.boxes.get(from) {
@@ -312,7 +310,13 @@ impl Grid {
             count += 1;
             coarse = *c;
         });
-        scan(&rows[..count], &coarse, out);
+        scan(&coarse, &rows[..count]);
+    }
+
+    /// Appends to `out` every body in the grid whose box may overlap `q` (a superset: the
+    /// grid compares boxes rounded outwards to single precision).
+    pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
+        self.scan_rows(q, &mut |coarse, rows| self.collect_in(coarse, rows, out));
     }
 
     /// [`Grid::collect_in`] for two query boxes at once: each box of the rows is compared
@@ -352,20 +356,9 @@ impl Grid {
             hi: a.hi.max(b.hi),
         };
         let (qa, qb) = (Coarse::around(a), Coarse::around(b));
-        let mut rows = [(0u32, 0u32); PREFETCHED_ROWS];
-        let mut count = 0;
-        self.visit_rows(&both, &mut |_, from, to| {
-            if count == PREFETCHED_ROWS {
-                self.collect_both_in((&qa, &qb), &rows, (out_a, out_b));
-                count = 0;
-            }
-            if let Some(first) = self.boxes.get(from) {
-                crate::solver::prefetch(first);
-            }
-            rows[count] = (from as u32, to as u32);
-            count += 1;
+        self.scan_rows(&both, &mut |_, rows| {
+            self.collect_both_in((&qa, &qb), rows, (&mut *out_a, &mut *out_b))
         });
-        self.collect_both_in((&qa, &qb), &rows[..count], (out_a, out_b));
     }
 
     /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the

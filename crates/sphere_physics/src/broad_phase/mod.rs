@@ -280,9 +280,7 @@ impl BroadPhase {
         }
         let from = out.len();
         self.grid.collect(&boxes[i], out);
-        if let Some(at) = out[from..].iter().position(|&j| j as usize == i) {
-            out.remove(from + at);
-        }
+        remove_from(out, from, i);
         self.hierarchy
             .overlapping(i, &boxes[i], boxes, |j| out.push(j as u32));
     }
@@ -304,11 +302,8 @@ impl BroadPhase {
         }
         let (from_i, from_j) = (out_i.len(), out_j.len());
         self.grid.collect_both(&boxes[i], &boxes[j], out_i, out_j);
-        for (out, from, k) in [(&mut *out_i, from_i, i), (&mut *out_j, from_j, j)] {
-            if let Some(at) = out[from..].iter().position(|&m| m as usize == k) {
-                out.remove(from + at);
-            }
-        }
+        remove_from(out_i, from_i, i);
+        remove_from(out_j, from_j, j);
         self.hierarchy
             .overlapping(i, &boxes[i], boxes, |m| out_i.push(m as u32));
         self.hierarchy
@@ -332,5 +327,12 @@ impl BroadPhase {
             }
         });
         self.hierarchy.overlapping(i, bi, boxes, f);
+    }
+}
+
+/// Removes body `k` from the candidates `out[from..]` (a body's own query finds itself).
+fn remove_from(out: &mut Vec<u32>, from: usize, k: usize) {
+    if let Some(at) = out[from..].iter().position(|&m| m as usize == k) {
+        out.remove(from + at);
     }
 }

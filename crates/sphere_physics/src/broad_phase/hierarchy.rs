@@ -101,6 +101,11 @@ pub(crate) struct Hierarchy {
     /// testing them directly beats visiting cells. May hold bodies that have since left the
     /// level; each body at most once.
     members: Vec<Vec<u32>>,
+    /// Every body held this step, while there are at most [`FEW`] (a dome, a box's walls and
+    /// the odd body that left the grid): a query tests them directly, whatever their levels.
+    few: Vec<u32>,
+    /// How many bodies the hierarchy holds this step.
+    held: usize,
 }
 
 /// Levels with at most this many bodies are scanned through their member lists.
@@ -159,12 +164,17 @@ impl Hierarchy {
         self.start.resize(buckets + 1, 0);
         self.members.resize_with(LEVELS, Vec::new);
         self.members.iter_mut().for_each(Vec::clear);
+        self.few.clear();
+        self.held = n - held;
         self.highest = 0;
         for (i, b) in boxes.iter().enumerate().skip(held) {
             let key = self.key_of(b);
             self.highest = self.highest.max(key.level as usize);
             if self.members[key.level as usize].len() <= FEW {
                 self.members[key.level as usize].push(i as u32);
+            }
+            if self.held <= FEW {
+                self.few.push(i as u32);
             }
             self.count_in(key.level);
             let extent = &mut self.level_extents[key.level as usize];
@@ -267,6 +277,10 @@ impl Hierarchy {
             self.count_in(key.level);
             self.add_member(i, key.level);
             self.overlay_insert(i as u32);
+            self.held += 1;
+            if self.held <= FEW {
+                self.few.push(i as u32);
+            }
             return;
         }
         if !self.in_overlay[i] {
@@ -574,6 +588,15 @@ impl Hierarchy {
 
     /// Calls `f(j)` for every body `j != i` it holds whose box overlaps `q` (`boxes` current).
     pub fn overlapping(&self, i: usize, q: &Aabb, boxes: &[Aabb], mut f: impl FnMut(usize)) {
+        if self.held <= FEW {
+            for &j in &self.few {
+                let j = j as usize;
+                if j != i && q.overlaps(&boxes[j]) {
+                    f(j);
+                }
+            }
+            return;
+        }
         self.visit(q, 0..self.highest + 1, &mut |j| {
             if j != i && q.overlaps(&boxes[j]) {
                 f(j);

@@ -1,10 +1,7 @@
-//! The step's event queue: a calendar of time buckets over `[0, dt]`, each bucket a small
-//! binary heap once it is reached. Pops come in exactly the order a single binary heap would
-//! give (the items' own order; bucket boundaries follow time, which leads that order), but each
-//! pop works on a heap of the few events near the current time instead of all of them.
-
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+//! The step's event queue: a calendar of time buckets over `[0, dt]`, each bucket sorted once
+//! it is reached. Pops come in exactly the order a single priority queue would give (the
+//! items' own order; bucket boundaries follow time, which leads that order), but each pop
+//! works on the few events near the current time instead of all of them.
 
 /// An item with a time in `[0, span]`, first in its order.
 pub(crate) trait Timed: Ord + Copy {
@@ -35,8 +32,10 @@ pub(crate) struct EventQueue<T: Timed> {
     chunks: Vec<Chunk<T>>,
     /// Each bucket's newest chunk and how many items it holds (older chunks are full).
     heads: Vec<(u32, u32)>,
-    /// The current bucket's items (and any pushed into it), ordered.
-    current: BinaryHeap<Reverse<T>>,
+    /// The current bucket's items (and any pushed into it), latest first: a pop takes the
+    /// last. A bucket holds a few items (four expected), so sorting them and inserting in
+    /// place beats a heap.
+    current: Vec<T>,
     /// The current bucket.
     at: usize,
     /// Buckets in use.
@@ -52,7 +51,7 @@ impl<T: Timed> Default for EventQueue<T> {
         Self {
             chunks: Vec::new(),
             heads: Vec::new(),
-            current: BinaryHeap::new(),
+            current: Vec::new(),
             at: 0,
             count: 0,
             scale: 0.0,
@@ -91,7 +90,9 @@ impl<T: Timed> EventQueue<T> {
         }
         let b = self.bucket(item.time());
         if b <= self.at {
-            self.current.push(Reverse(item));
+            // After every later item, before every earlier one.
+            let at = self.current.partition_point(|queued| *queued > item);
+            self.current.insert(at, item);
             return;
         }
         let (head, len) = self.heads[b];
@@ -121,22 +122,23 @@ impl<T: Timed> EventQueue<T> {
             let (mut c, mut len) = self.heads[self.at];
             while c != NONE {
                 let chunk = &self.chunks[c as usize];
-                for item in &chunk.items[..len as usize] {
-                    self.current.push(Reverse(*item));
-                }
+                self.current.extend_from_slice(&chunk.items[..len as usize]);
                 self.waiting -= len as usize;
                 (c, len) = (chunk.next, CHUNK as u32);
             }
+            // Latest first (items equal in order are the same event twice: either may go
+            // first).
+            self.current.sort_unstable_by(|x, y| y.cmp(x));
         }
     }
 
     pub fn peek(&mut self) -> Option<T> {
         self.fill();
-        self.current.peek().map(|r| r.0)
+        self.current.last().copied()
     }
 
     pub fn pop(&mut self) -> Option<T> {
         self.fill();
-        self.current.pop().map(|r| r.0)
+        self.current.pop()
     }
 }

@@ -7,49 +7,14 @@
 //! partners are in the 27 cells around it. After a collision a body stays where it is while its
 //! new box is still within the envelope (most do: the new box is the rest of the old drift,
 //! turned); otherwise it leaves the grid for the broad phase's general tier.
+//!
+//! The grid's scans compare boxes [packed](super::packed) into 16-bit integers, rounded
+//! outwards: 16 bytes and one comparison per box.
 
-use glam::{DVec3, Vec3A};
+use glam::DVec3;
 
 use super::Aabb;
-
-/// A box in single precision, rounded outwards so it holds the box it was made from: the grid's
-/// scans read half the bytes, and a superset of the overlapping pairs is all they must find.
-#[derive(Clone, Copy, Debug)]
-struct Coarse {
-    lo: Vec3A,
-    hi: Vec3A,
-}
-
-impl Coarse {
-    /// Overlaps nothing: the box of a body that left the grid.
-    const EMPTY: Coarse = Coarse {
-        lo: Vec3A::INFINITY,
-        hi: Vec3A::NEG_INFINITY,
-    };
-
-    /// The box holding `b`: each corner rounded to single precision, then moved outwards by
-    /// four times the rounding's largest error (plus a hair, for values near zero). Branch-free:
-    /// which way a value rounds is a coin toss, and branching on it cost more than the scan.
-    #[inline]
-    fn around(b: &Aabb) -> Self {
-        let limit = DVec3::splat(f64::from(f32::MAX));
-        let single = |v: DVec3| Vec3A::from(v.clamp(-limit, limit).as_vec3());
-        // Rounding to nearest errs by at most |v|·2⁻²⁴; 2⁻²² covers it and the rounding of
-        // the subtraction itself.
-        let pad = |v: Vec3A| v.abs() * (1.0 / 4_194_304.0) + 1e-30;
-        let (lo, hi) = (single(b.lo), single(b.hi));
-        Coarse {
-            lo: lo - pad(lo),
-            hi: hi + pad(hi),
-        }
-    }
-
-    /// Whether the boxes meet (touching counts); branch-free.
-    #[inline]
-    fn overlaps(&self, other: &Coarse) -> bool {
-        (self.lo.cmple(other.hi) & other.lo.cmple(self.hi)).all()
-    }
-}
+use super::packed::{Frame, Packed, Query};
 
 /// How many rows a query finds before scanning them: a grid body's box meets two or three
 /// cells per axis, so nine rows of three at most, unless the box is almost a cell wide (then
@@ -84,8 +49,10 @@ pub(crate) struct Grid {
     start: Vec<u32>,
     /// Each grid body's cell.
     cells: Vec<Cell>,
-    /// Each grid body's box, rounded outwards ([`Coarse::EMPTY`] once it has left).
-    boxes: Vec<Coarse>,
+    /// Each grid body's box, packed ([`Packed::empty`] once it has left).
+    boxes: Vec<Packed>,
+    /// The frame the boxes are packed in: the block and two cells around it.
+    frame: Frame,
     /// Whether grid body `i` is still in the grid (it leaves when its box leaves its envelope).
     present: Vec<bool>,
 }
@@ -152,11 +119,19 @@ impl Grid {
         std::mem::swap(&mut self.cells, cells);
         self.present.clear();
         self.present.resize(self.len, true);
+        let lo = DVec3::new(
+            f64::from(origin[0]),
+            f64::from(origin[1]),
+            f64::from(origin[2]),
+        ) * self.cell;
+        self.frame = Frame::new(lo, self.cell, dims);
+        let frame = &self.frame;
         self.boxes.clear();
         self.boxes
-            .extend(boxes[..self.len].iter().map(Coarse::around));
+            .extend(boxes[..self.len].iter().map(|b| Packed::new(frame, b)));
         // Padding, so that a scan may read a whole block past any range's start.
-        self.boxes.extend(std::iter::repeat_n(Coarse::EMPTY, BLOCK));
+        self.boxes
+            .extend(std::iter::repeat_n(Packed::empty(), BLOCK));
     }
 
     /// Bodies `0..len()` are (or were, at the start of the step) the grid's.
@@ -182,11 +157,11 @@ impl Grid {
     /// otherwise leaves the grid (returns false).
     pub fn keep(&mut self, i: usize, b: &Aabb) -> bool {
         if self.within(b, self.cells[i]) {
-            self.boxes[i] = Coarse::around(b);
+            self.boxes[i] = Packed::new(&self.frame, b);
             return true;
         }
         self.present[i] = false;
-        self.boxes[i] = Coarse::EMPTY;
+        self.boxes[i] = Packed::empty();
         false
     }
 
@@ -213,7 +188,7 @@ impl Grid {
             let k = self.cells[i];
             let c = (k[0] - self.origin[0]) as usize
                 + nx * ((k[1] - self.origin[1]) as usize + ny * (k[2] - self.origin[2]) as usize);
-            let bi = &boxes[i];
+            let bi = &boxes[i].as_query();
             let mut kept = 0;
             // Own cell (after i) and the next along x: one range. Then four rows of three.
             let ranges = [
@@ -242,7 +217,7 @@ impl Grid {
                     for b in 0..BLOCK {
                         let m = j + b;
                         found[kept] = m as u32;
-                        kept += usize::from((m < to) & boxes[m].overlaps(bi));
+                        kept += usize::from((m < to) & boxes[m].meets(bi));
                     }
                     j += BLOCK;
                     if j >= to {
@@ -259,9 +234,9 @@ impl Grid {
     /// Calls `f(j)` for every body `j` in `from..to` still in the grid whose box overlaps `q`
     /// (bodies that left have empty boxes).
     #[inline]
-    fn visit_in(&self, q: &Coarse, from: usize, to: usize, f: &mut impl FnMut(usize)) {
+    fn visit_in(&self, q: &Query, from: usize, to: usize, f: &mut impl FnMut(usize)) {
         for (offset, bj) in self.boxes[from..to].iter().enumerate() {
-            if bj.overlaps(q) {
+            if bj.meets(q) {
                 f(from + offset);
             }
         }
@@ -272,7 +247,7 @@ impl Grid {
     /// the branch predictor loses): each index is written, and kept by advancing past it only
     /// if it overlaps. `out` grows once for all the rows.
     #[inline]
-    fn collect_in(&self, q: &Coarse, rows: &[(u32, u32)], out: &mut Vec<u32>) {
+    fn collect_in(&self, q: &Query, rows: &[(u32, u32)], out: &mut Vec<u32>) {
         let base = out.len();
         let total: u32 = rows.iter().map(|&(from, to)| to - from).sum();
         out.resize(base + total as usize, 0);
@@ -282,22 +257,22 @@ impl Grid {
             let (from, to) = (from as usize, to as usize);
             for (offset, bj) in self.boxes[from..to].iter().enumerate() {
                 slots[kept] = (from + offset) as u32;
-                kept += usize::from(bj.overlaps(q));
+                kept += usize::from(bj.meets(q));
             }
         }
         out.truncate(base + kept);
     }
 
-    /// Calls `scan` with `q` rounded outwards and the ranges of grid bodies whose cells'
+    /// Calls `scan` with `q` packed and the ranges of grid bodies whose cells'
     /// envelopes may meet `q`: found first and handed over nine at a time, each row's first
     /// boxes asked for as it is found, since the rows lie far apart in memory and their loads
     /// then overlap instead of each waiting in turn. (A large box meets more rows than nine:
     /// they come a batch at a time, in order.)
     #[inline]
-    fn scan_rows(&self, q: &Aabb, scan: &mut impl FnMut(&Coarse, &[(u32, u32)])) {
+    fn scan_rows(&self, q: &Aabb, scan: &mut impl FnMut(&Query, &[(u32, u32)])) {
         let mut rows = [(0u32, 0u32); PREFETCHED_ROWS];
         let mut count = 0;
-        let mut coarse = Coarse::EMPTY;
+        let mut query = Packed::empty().as_query();
         self.visit_rows(q, &mut |c, from, to| {
             if count == PREFETCHED_ROWS {
                 scan(c, &rows);
@@ -308,15 +283,15 @@ impl Grid {
             }
             rows[count] = (from as u32, to as u32);
             count += 1;
-            coarse = *c;
+            query = *c;
         });
-        scan(&coarse, &rows[..count]);
+        scan(&query, &rows[..count]);
     }
 
     /// Appends to `out` every body in the grid whose box may overlap `q` (a superset: the
-    /// grid compares boxes rounded outwards to single precision).
+    /// grid compares boxes packed, rounded outwards).
     pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
-        self.scan_rows(q, &mut |coarse, rows| self.collect_in(coarse, rows, out));
+        self.scan_rows(q, &mut |query, rows| self.collect_in(query, rows, out));
     }
 
     /// [`Grid::collect_in`] for two query boxes at once: each box of the rows is compared
@@ -324,7 +299,7 @@ impl Grid {
     #[inline]
     fn collect_both_in(
         &self,
-        (qa, qb): (&Coarse, &Coarse),
+        (qa, qb): (&Query, &Query),
         rows: &[(u32, u32)],
         (out_a, out_b): (&mut Vec<u32>, &mut Vec<u32>),
     ) {
@@ -339,9 +314,9 @@ impl Grid {
             for (offset, bj) in self.boxes[from..to].iter().enumerate() {
                 let index = (from + offset) as u32;
                 slots_a[kept_a] = index;
-                kept_a += usize::from(bj.overlaps(qa));
+                kept_a += usize::from(bj.meets(qa));
                 slots_b[kept_b] = index;
-                kept_b += usize::from(bj.overlaps(qb));
+                kept_b += usize::from(bj.meets(qb));
             }
         }
         out_a.truncate(base_a + kept_a);
@@ -355,28 +330,26 @@ impl Grid {
             lo: a.lo.min(b.lo),
             hi: a.hi.max(b.hi),
         };
-        let (qa, qb) = (Coarse::around(a), Coarse::around(b));
+        let (qa, qb) = (Query::new(&self.frame, a), Query::new(&self.frame, b));
         self.scan_rows(&both, &mut |_, rows| {
             self.collect_both_in((&qa, &qb), rows, (&mut *out_a, &mut *out_b))
         });
     }
 
     /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the
-    /// grid compares boxes rounded outwards to single precision).
+    /// grid compares boxes packed, rounded outwards).
     pub fn visit(&self, q: &Aabb, f: &mut impl FnMut(usize)) {
-        self.visit_rows(q, &mut |coarse, from, to| {
-            self.visit_in(coarse, from, to, f)
-        });
+        self.visit_rows(q, &mut |query, from, to| self.visit_in(query, from, to, f));
     }
 
-    /// Calls `scan(q rounded outwards, from, to)` for each range of grid bodies whose cells'
+    /// Calls `scan(q packed, from, to)` for each range of grid bodies whose cells'
     /// envelopes may meet `q`.
     #[inline]
-    fn visit_rows(&self, q: &Aabb, scan: &mut impl FnMut(&Coarse, usize, usize)) {
+    fn visit_rows(&self, q: &Aabb, scan: &mut impl FnMut(&Query, usize, usize)) {
         if self.len == 0 {
             return;
         }
-        let coarse = Coarse::around(q);
+        let coarse = Query::new(&self.frame, q);
         // Cell k's envelope [k·cell − slack, (k+1)·cell + slack] overlaps [lo, hi] when
         // (lo − slack)/cell − 1 <= k <= (hi + slack)/cell; padded against rounding.
         let mut range = [(0usize, 0usize); 3];
@@ -421,15 +394,15 @@ impl Grid {
 /// Calls `f(i, j)` for every body `j` in `from..to` whose box overlaps `bi` (body `i`'s).
 #[inline]
 fn pairs_in(
-    bi: &Coarse,
+    bi: &Query,
     i: usize,
-    boxes: &[Coarse],
+    boxes: &[Packed],
     from: usize,
     to: usize,
     f: &mut impl FnMut(usize, usize),
 ) {
     for (offset, bj) in boxes[from..to].iter().enumerate() {
-        if bi.overlaps(bj) {
+        if bj.meets(bi) {
             f(i, from + offset);
         }
     }

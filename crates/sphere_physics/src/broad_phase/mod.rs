@@ -12,6 +12,7 @@
 
 mod grid;
 mod hierarchy;
+mod packed;
 
 use glam::DVec3;
 

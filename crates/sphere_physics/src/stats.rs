@@ -27,7 +27,9 @@ pub struct StepStats {
     /// (an impact found again after one of its bodies changed counts again). Non-zero means the
     /// step was cut short: bodies may be left overlapping until the next step.
     pub collisions_deferred: u32,
-    /// Pairs handed to the time-of-impact method.
+    /// Pairs handed to the time-of-impact method. A pair closing but still apart at the end of
+    /// the step (and closing all along) is not handed to a built-in method: it would report
+    /// no impact.
     pub toi_tests: u64,
     /// Iterations the time-of-impact method spent (bisection steps; 0 for the exact method).
     pub toi_iterations: u64,

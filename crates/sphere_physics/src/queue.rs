@@ -3,6 +3,9 @@
 //! items' own order; bucket boundaries follow time, which leads that order), but each pop
 //! works on the few events near the current time instead of all of them.
 
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
 /// An item with a time in `[0, span]`, first in its order.
 pub(crate) trait Timed: Ord + Copy {
     fn time(&self) -> f64;
@@ -10,6 +13,9 @@ pub(crate) trait Timed: Ord + Copy {
 
 /// No chunk (end of a bucket's list).
 const NONE: u32 = u32::MAX;
+
+/// How many items the current bucket holds before further pushes into it go to a heap.
+const CROWD: usize = 32;
 
 /// Items per chunk: a chunk of the solver's 24-byte events fills two cache lines.
 const CHUNK: usize = 5;
@@ -32,10 +38,14 @@ pub(crate) struct EventQueue<T: Timed> {
     chunks: Vec<Chunk<T>>,
     /// Each bucket's newest chunk and how many items it holds (older chunks are full).
     heads: Vec<(u32, u32)>,
-    /// The current bucket's items (and any pushed into it), latest first: a pop takes the
-    /// last. A bucket holds a few items (four expected), so sorting them and inserting in
-    /// place beats a heap.
+    /// The current bucket's items (and any pushed into it while it holds few), latest first:
+    /// a pop takes the last. A bucket holds a few items (four expected), so sorting them and
+    /// inserting in place beats a heap.
     current: Vec<T>,
+    /// Items pushed into the current bucket while it holds many (a crowd of events within a
+    /// bucket's width of time): a heap, so that such a crowd costs O(log n) a push, not the
+    /// O(n) of an insertion. Pops take the earlier of its first and `current`'s last.
+    spill: BinaryHeap<Reverse<T>>,
     /// The current bucket.
     at: usize,
     /// Buckets in use.
@@ -52,6 +62,7 @@ impl<T: Timed> Default for EventQueue<T> {
             chunks: Vec::new(),
             heads: Vec::new(),
             current: Vec::new(),
+            spill: BinaryHeap::new(),
             at: 0,
             count: 0,
             scale: 0.0,
@@ -70,6 +81,7 @@ impl<T: Timed> EventQueue<T> {
         self.heads.resize(count, (NONE, 0));
         self.count = count;
         self.current.clear();
+        self.spill.clear();
         self.at = 0;
         self.scale = if span > 0.0 { count as f64 / span } else { 0.0 };
         self.waiting = 0;
@@ -90,9 +102,13 @@ impl<T: Timed> EventQueue<T> {
         }
         let b = self.bucket(item.time());
         if b <= self.at {
-            // After every later item, before every earlier one.
-            let at = self.current.partition_point(|queued| *queued > item);
-            self.current.insert(at, item);
+            if self.current.len() >= CROWD {
+                self.spill.push(Reverse(item));
+            } else {
+                // After every later item, before every earlier one.
+                let at = self.current.partition_point(|queued| *queued > item);
+                self.current.insert(at, item);
+            }
             return;
         }
         let (head, len) = self.heads[b];
@@ -111,7 +127,7 @@ impl<T: Timed> EventQueue<T> {
 
     /// Makes `current` hold the earliest items, moving on to later buckets as needed.
     fn fill(&mut self) {
-        while self.current.is_empty() && self.waiting > 0 {
+        while self.current.is_empty() && self.spill.is_empty() && self.waiting > 0 {
             self.at += 1;
             // The next bucket's newest chunk will be read soon: ask for it now.
             if let Some(&(ahead, _)) = self.heads.get(self.at + 1)
@@ -134,11 +150,24 @@ impl<T: Timed> EventQueue<T> {
 
     pub fn peek(&mut self) -> Option<T> {
         self.fill();
-        self.current.last().copied()
+        if self.spill.is_empty() {
+            return self.current.last().copied();
+        }
+        match (self.current.last(), self.spill.peek()) {
+            (Some(&last), Some(Reverse(first))) => Some(last.min(*first)),
+            (last, first) => last.copied().or(first.map(|r| r.0)),
+        }
     }
 
     pub fn pop(&mut self) -> Option<T> {
         self.fill();
-        self.current.pop()
+        if self.spill.is_empty() {
+            return self.current.pop();
+        }
+        match (self.current.last(), self.spill.peek()) {
+            (Some(last), Some(Reverse(first))) if first < last => self.spill.pop().map(|r| r.0),
+            (Some(_), _) => self.current.pop(),
+            (None, _) => self.spill.pop().map(|r| r.0),
+        }
     }
 }

@@ -27,9 +27,10 @@ pub struct StepStats {
     /// (an impact found again after one of its bodies changed counts again). Non-zero means the
     /// step was cut short: bodies may be left overlapping until the next step.
     pub collisions_deferred: u32,
-    /// Pairs handed to the time-of-impact method. A pair closing but still apart at the end of
-    /// the step (and closing all along) is not handed to a built-in method: it would report
-    /// no impact.
+    /// Pairs handed to the time-of-impact method. A pair closing all along the step and still
+    /// apart at its end (beyond contact by the tolerance and a millionth of the reach) is not
+    /// handed to a built-in method, which would report no impact (unless it moves more than a
+    /// million reaches in the step).
     pub toi_tests: u64,
     /// Iterations the time-of-impact method spent (bisection steps; 0 for the exact method).
     pub toi_iterations: u64,

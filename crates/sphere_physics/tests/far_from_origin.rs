@@ -1,5 +1,5 @@
 //! The broad phase's grid compares boxes packed into 16-bit integers in a frame around its
-//! block of cells, rounded outwards (it once compared them in single precision, whose step is
+//! block of cells (it once compared them in single precision, rounded outwards, whose step is
 //! 0.008 at 1e5, a sixth of these spheres' radius). Far from the origin the frame's map from
 //! space is a large offset minus a large product: a gas there must still find every
 //! collision, keep its energy and leave no overlap.

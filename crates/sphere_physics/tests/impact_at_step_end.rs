@@ -74,3 +74,28 @@ proptest! {
         );
     }
 }
+
+#[test]
+fn a_pair_that_cannot_meet_within_the_step_is_not_handed_to_the_method() {
+    // Spheres of radius 0.5, one passing the other 0.9 off its line at 1 m/s, still closing at
+    // the end of the step: their swept boxes overlap, so the pair is tested.
+    let run = |end_distance: f64| {
+        let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
+        world.add_sphere(SphereDesc::new(0.5)).unwrap();
+        let along = (end_distance * end_distance - 0.81).sqrt() + DT;
+        world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(DVec3::new(along, 0.9, 0.0))
+                    .moving(-DVec3::X),
+            )
+            .unwrap();
+        let stats = *world.step(DT).unwrap();
+        (stats.collisions, stats.toi_tests)
+    };
+    // 3 cm apart at the end of the step: no method would find an impact, none is asked.
+    assert_eq!(run(1.03), (0, 0));
+    // A tenth of a micrometre apart, within the margin of a millionth of the reach: the
+    // method is asked (and finds none).
+    assert_eq!(run(1.0 + 1e-7), (0, 1));
+}

@@ -1,9 +1,10 @@
 //! The broad phase's grid packs each box into 16-bit integers in a frame around its block of
-//! cells, rounded outwards: 256 steps per cell (0.85 mm here), but fewer along a block too long
-//! for that (here 358 cells long: 88 steps per cell, 2.5 mm). Pairs whose swept boxes meet by
-//! less than one such step (1 mm) must still be found: each pair here closes its gap at 0.97 of
-//! the first step, far too fast to be caught by the next one, so a pair the grid missed would
-//! end the step overlapping. (Rounding the boxes inwards instead misses most of them.)
+//! cells, each side rounded to an integer step: 256 steps per cell (0.85 mm here), but fewer
+//! along a block too long for that (here 358 cells along x: 88 steps per cell, 2.5 mm). Pairs
+//! whose swept boxes meet by 1 mm must still be found, those closing along the coarse axis (a
+//! line of 150 pairs) as well as along the fine ones (a line of 300): each pair closes its gap
+//! at 0.97 of the first step, far too fast to be caught by the next one, so a pair the grid
+//! missed would end the step overlapping. (Rounding the boxes inwards instead misses many.)
 
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -28,7 +29,7 @@ fn pair(centre: DVec3, axis: DVec3) -> [SphereDesc; 2] {
 }
 
 /// Pairs closing across a line along x, a quarter of a metre apart, by turns along y and z;
-/// pairs closing along x at both ends; the whole far from the origin.
+/// beside it a line of pairs closing along x, half a metre apart; the whole far from the origin.
 fn scene() -> Vec<[SphereDesc; 2]> {
     let start = DVec3::new(5_000.0, -300.0, 40.0);
     let mut pairs = Vec::new();
@@ -36,8 +37,10 @@ fn scene() -> Vec<[SphereDesc; 2]> {
         let axis = if k % 2 == 0 { DVec3::Y } else { DVec3::Z };
         pairs.push(pair(start + DVec3::X * (0.25 * f64::from(k)), axis));
     }
-    pairs.push(pair(start - DVec3::X, DVec3::X));
-    pairs.push(pair(start + DVec3::X * (0.25 * 299.0 + 1.0), DVec3::X));
+    for k in 0..150 {
+        let centre = start + DVec3::new(0.5 * f64::from(k), 0.0, 1.0);
+        pairs.push(pair(centre, DVec3::X));
+    }
     pairs
 }
 

@@ -8,8 +8,8 @@
 //! new box is still within the envelope (most do: the new box is the rest of the old drift,
 //! turned); otherwise it leaves the grid for the broad phase's general tier.
 //!
-//! The grid's scans compare boxes [packed](super::packed) into 16-bit integers, rounded
-//! outwards: 16 bytes and one comparison per box.
+//! The grid's scans compare boxes [packed](super::packed) into 16-bit integers (boxes that
+//! meet still meet when packed): 16 bytes and one comparison per box.
 
 use glam::DVec3;
 
@@ -289,7 +289,7 @@ impl Grid {
     }
 
     /// Appends to `out` every body in the grid whose box may overlap `q` (a superset: the
-    /// grid compares boxes packed, rounded outwards).
+    /// grid compares boxes packed into integers, see `packed`).
     pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
         self.scan_rows(q, &mut |query, rows| self.collect_in(query, rows, out));
     }
@@ -337,7 +337,7 @@ impl Grid {
     }
 
     /// Calls `f(j)` for every body `j` in the grid whose box may overlap `q` (a superset: the
-    /// grid compares boxes packed, rounded outwards).
+    /// grid compares boxes packed into integers, see `packed`).
     pub fn visit(&self, q: &Aabb, f: &mut impl FnMut(usize)) {
         self.visit_rows(q, &mut |query, from, to| self.visit_in(query, from, to, f));
     }

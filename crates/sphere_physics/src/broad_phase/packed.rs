@@ -2,7 +2,9 @@
 //! scans read 16 bytes per box and compare a box with a query in one instruction.
 //!
 //! A box is mapped into the frame (an affine map per axis, the same for every box) and each
-//! side rounded outwards: the low corner down, the high corner up. The map never decreases, so
+//! side rounded to an integer: the low corner down (its floor), the high corner to no less than
+//! its floor (up, but for a rounding tie in `2·BIAS - v` below the frame's middle, which lands
+//! it on the floor). The map never decreases, so
 //! boxes that meet still meet when packed: the scans find a superset of the overlapping pairs,
 //! which is all they must find. A packed box is `[lo.x, lo.y, lo.z, 0, -hi.x, -hi.y, -hi.z, 0]`
 //! and a query `[hi.x, hi.y, hi.z, 0, -lo.x, -lo.y, -lo.z, 0]`: they meet exactly when no lane
@@ -63,7 +65,7 @@ pub(crate) struct Packed(lanes::Lanes);
 pub(crate) struct Query(lanes::Lanes);
 
 impl Packed {
-    /// `b` in `frame`, rounded outwards.
+    /// `b` in `frame`, each side rounded to an integer (see the module docs).
     #[inline]
     pub fn new(frame: &Frame, b: &Aabb) -> Packed {
         Packed(lanes::Lanes::pack(frame, b))
@@ -76,8 +78,8 @@ impl Packed {
         Packed(lanes::Lanes::new([out, out, out, 0, out, out, out, 0]))
     }
 
-    /// Whether the box meets `q` (touching counts, and a little more: both are rounded
-    /// outwards). No branch.
+    /// Whether the box meets `q` (touching counts, and a little more: both are rounded to
+    /// integers). No branch.
     #[inline(always)]
     pub fn meets(&self, q: &Query) -> bool {
         self.0.at_most(&q.0)
@@ -91,7 +93,7 @@ impl Packed {
 }
 
 impl Query {
-    /// `b` in `frame`, rounded outwards.
+    /// `b` in `frame`, each side rounded to an integer (see the module docs).
     #[inline]
     pub fn new(frame: &Frame, b: &Aabb) -> Query {
         Packed::new(frame, b).as_query()
@@ -121,7 +123,7 @@ mod lanes {
             Lanes(unsafe { _mm_set_epi16(v[7], v[6], v[5], v[4], v[3], v[2], v[1], v[0]) })
         }
 
-        /// `[lo, 0, -hi, 0]` for `b` in `frame`, each side rounded outwards.
+        /// `[lo, 0, -hi, 0]` for `b` in `frame`, each side rounded (see the module docs).
         #[inline(always)]
         pub fn pack(frame: &Frame, b: &Aabb) -> Self {
             let (s, o) = (&frame.scale, &frame.offset);
@@ -138,7 +140,9 @@ mod lanes {
                     _mm_min_pd(_mm_max_pd(v, least), most)
                 };
                 let (lo_xy, lo_zw) = (map(b.lo.x, b.lo.y, 0), map(b.lo.z, 0.0, 2));
-                // ceil(v) = 2·BIAS - floor(2·BIAS - v), and 2·BIAS - v is positive.
+                // 2·BIAS - floor(2·BIAS - v) is ceil(v), or floor(v) after a rounding tie in the
+                // subtraction (v < BIAS): never below floor(v), which is all a scan needs.
+                // 2·BIAS - v is positive.
                 let twice = _mm_set1_pd(f64::from(2 * BIAS));
                 let up_xy = _mm_sub_pd(twice, map(b.hi.x, b.hi.y, 0));
                 let up_zw = _mm_sub_pd(twice, map(b.hi.z, 0.0, 2));
@@ -146,7 +150,7 @@ mod lanes {
                 let bias = _mm_set1_epi32(BIAS);
                 let lo = _mm_unpacklo_epi64(_mm_cvttpd_epi32(lo_xy), _mm_cvttpd_epi32(lo_zw));
                 let up = _mm_unpacklo_epi64(_mm_cvttpd_epi32(up_xy), _mm_cvttpd_epi32(up_zw));
-                // lo - BIAS, and floor(2·BIAS - hi) - BIAS = BIAS - ceil(hi) = -(ceil(hi) - BIAS).
+                // lo - BIAS, and floor(2·BIAS - hi) - BIAS = -(2·BIAS - floor(2·BIAS - hi) - BIAS).
                 Lanes(_mm_packs_epi32(
                     _mm_sub_epi32(lo, bias),
                     _mm_sub_epi32(up, bias),

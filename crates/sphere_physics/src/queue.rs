@@ -148,22 +148,39 @@ impl<T: Timed> EventQueue<T> {
         }
     }
 
+    #[inline]
     pub fn peek(&mut self) -> Option<T> {
         self.fill();
         if self.spill.is_empty() {
             return self.current.last().copied();
         }
+        self.peek_crowded()
+    }
+
+    #[inline]
+    pub fn pop(&mut self) -> Option<T> {
+        self.fill();
+        if self.spill.is_empty() {
+            return self.current.pop();
+        }
+        self.pop_crowded()
+    }
+
+    /// [`EventQueue::peek`] with items in the heap: kept out of line, so that the usual path
+    /// stays small enough to inline into the event loop.
+    #[cold]
+    #[inline(never)]
+    fn peek_crowded(&self) -> Option<T> {
         match (self.current.last(), self.spill.peek()) {
             (Some(&last), Some(Reverse(first))) => Some(last.min(*first)),
             (last, first) => last.copied().or(first.map(|r| r.0)),
         }
     }
 
-    pub fn pop(&mut self) -> Option<T> {
-        self.fill();
-        if self.spill.is_empty() {
-            return self.current.pop();
-        }
+    /// [`EventQueue::pop`] with items in the heap (see [`EventQueue::peek_crowded`]).
+    #[cold]
+    #[inline(never)]
+    fn pop_crowded(&mut self) -> Option<T> {
         match (self.current.last(), self.spill.peek()) {
             (Some(last), Some(Reverse(first))) if first < last => self.spill.pop().map(|r| r.0),
             (Some(_), _) => self.current.pop(),

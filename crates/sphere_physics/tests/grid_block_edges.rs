@@ -3,7 +3,10 @@
 //! direction. Each pair here closes its gap within the first step, far too fast to be caught
 //! by the next one: a pair the grid missed would pass through itself.
 
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+mod common;
+
+use common::{head_on_pair, step_head_on_pairs};
+use sphere_physics::{SphereDesc, glam::DVec3};
 
 const RADIUS: f64 = 0.1;
 const SPEED: f64 = 1.0;
@@ -12,15 +15,7 @@ const DT: f64 = 1.0 / 60.0;
 
 /// A head-on pair along `axis` around `centre`: `(left, right)` spheres' descriptions.
 fn pair(centre: DVec3, axis: DVec3) -> [SphereDesc; 2] {
-    let half = RADIUS + GAP / 2.0;
-    [
-        SphereDesc::new(RADIUS)
-            .at(centre - axis * half)
-            .moving(axis * SPEED),
-        SphereDesc::new(RADIUS)
-            .at(centre + axis * half)
-            .moving(-axis * SPEED),
-    ]
+    head_on_pair(centre, axis, RADIUS, GAP, SPEED)
 }
 
 /// Every pair along every axis at every corner of a cube of side `side`, and at the middle
@@ -58,38 +53,10 @@ fn pairs_at_the_faces_edges_and_corners_of_the_grid_all_collide() {
     // 1.5: the block is every occupied cell; 2.2: over 16 cells per sphere, so the block is cut
     // down and the outermost pairs go to the hierarchy; 40: a sparse scene, mostly hierarchy.
     for side in [1.5, 2.2, 40.0] {
-        let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
         let pairs = scene(side);
-        let ids: Vec<_> = pairs
-            .iter()
-            .map(|[a, b]| {
-                (
-                    world.add_sphere(a.clone()).unwrap(),
-                    world.add_sphere(b.clone()).unwrap(),
-                )
-            })
-            .collect();
         // Past the two dozen bodies below which the broad phase tests all pairs directly.
-        assert_eq!(world.len(), 84);
-        let stats = *world.step(DT).unwrap();
-        assert_eq!(stats.collisions as usize, pairs.len(), "side {side}");
-        for ((a, b), [da, db]) in ids.iter().zip(&pairs) {
-            // Equal masses, elastic, head-on: the velocities are exchanged.
-            let (va, vb) = (
-                world.body(*a).unwrap().velocity(),
-                world.body(*b).unwrap().velocity(),
-            );
-            assert!(
-                (va - db.velocity).length() <= 1e-12,
-                "side {side}: {va} at {}",
-                da.position
-            );
-            assert!(
-                (vb - da.velocity).length() <= 1e-12,
-                "side {side}: {vb} at {}",
-                db.position
-            );
-        }
+        assert_eq!(2 * pairs.len(), 84);
+        let stats = step_head_on_pairs(&pairs, DT, &format!("side {side}"));
         assert!(
             stats.max_overlap <= 1e-12,
             "side {side}: {}",

@@ -6,7 +6,10 @@
 //! at 0.97 of the first step, far too fast to be caught by the next one, so a pair the grid
 //! missed would end the step overlapping. (Rounding the boxes inwards instead misses many.)
 
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+mod common;
+
+use common::{head_on_pair, step_head_on_pairs};
+use sphere_physics::{SphereDesc, glam::DVec3};
 
 const RADIUS: f64 = 0.1;
 const SPEED: f64 = 1.0;
@@ -17,15 +20,7 @@ const GAP: f64 = 2.0 * SPEED * 0.97 * DT;
 
 /// A head-on pair along `axis` around `centre`.
 fn pair(centre: DVec3, axis: DVec3) -> [SphereDesc; 2] {
-    let half = RADIUS + GAP / 2.0;
-    [
-        SphereDesc::new(RADIUS)
-            .at(centre - axis * half)
-            .moving(axis * SPEED),
-        SphereDesc::new(RADIUS)
-            .at(centre + axis * half)
-            .moving(-axis * SPEED),
-    ]
+    head_on_pair(centre, axis, RADIUS, GAP, SPEED)
 }
 
 /// Pairs closing across a line along x, a quarter of a metre apart, by turns along y and z;
@@ -46,35 +41,6 @@ fn scene() -> Vec<[SphereDesc; 2]> {
 
 #[test]
 fn pairs_along_a_grid_block_hundreds_of_cells_long_all_collide() {
-    let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
-    let pairs = scene();
-    let ids: Vec<_> = pairs
-        .iter()
-        .map(|[a, b]| {
-            (
-                world.add_sphere(a.clone()).unwrap(),
-                world.add_sphere(b.clone()).unwrap(),
-            )
-        })
-        .collect();
-    let stats = *world.step(DT).unwrap();
-    assert_eq!(stats.collisions as usize, pairs.len());
-    for ((a, b), [da, db]) in ids.iter().zip(&pairs) {
-        // Equal masses, elastic, head-on: the velocities are exchanged.
-        let (va, vb) = (
-            world.body(*a).unwrap().velocity(),
-            world.body(*b).unwrap().velocity(),
-        );
-        assert!(
-            (va - db.velocity).length() <= 1e-12,
-            "{va} at {}",
-            da.position
-        );
-        assert!(
-            (vb - da.velocity).length() <= 1e-12,
-            "{vb} at {}",
-            db.position
-        );
-    }
+    let stats = step_head_on_pairs(&scene(), DT, "long block");
     assert!(stats.max_overlap <= 1e-9, "{}", stats.max_overlap);
 }

@@ -1,9 +1,10 @@
 //! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
-//! cases it found, the creep allowance, and a sheet of spheres over fixed ones.
+//! cases it found, the creep allowance, a sheet of spheres over fixed ones, and head-on pairs
+//! that must each collide within one step.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
-use sphere_physics::{BodyId, Settings, SphereDesc, World, glam::DVec3};
+use sphere_physics::{BodyId, Settings, SphereDesc, StepStats, World, glam::DVec3};
 
 /// One sphere as the property draws it: velocity (x, y, z), radius, density, restitution, and
 /// a jitter along (1, 1, 1).
@@ -62,4 +63,59 @@ pub fn sheet_over_floors(
         }
     }
     (world, balls)
+}
+
+/// Two spheres of `radius` around `centre`, `gap` apart along `axis`, closing head-on at
+/// `speed` each.
+pub fn head_on_pair(
+    centre: DVec3,
+    axis: DVec3,
+    radius: f64,
+    gap: f64,
+    speed: f64,
+) -> [SphereDesc; 2] {
+    let half = radius + gap / 2.0;
+    [
+        SphereDesc::new(radius)
+            .at(centre - axis * half)
+            .moving(axis * speed),
+        SphereDesc::new(radius)
+            .at(centre + axis * half)
+            .moving(-axis * speed),
+    ]
+}
+
+/// Steps `pairs` (equal masses, elastic, head-on, no gravity) once by `dt` and checks that
+/// every pair collided: one collision each, the velocities exchanged. `label` names the case
+/// in a failure.
+pub fn step_head_on_pairs(pairs: &[[SphereDesc; 2]], dt: f64, label: &str) -> StepStats {
+    let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
+    let ids: Vec<_> = pairs
+        .iter()
+        .map(|[a, b]| {
+            (
+                world.add_sphere(a.clone()).unwrap(),
+                world.add_sphere(b.clone()).unwrap(),
+            )
+        })
+        .collect();
+    let stats = *world.step(dt).unwrap();
+    assert_eq!(stats.collisions as usize, pairs.len(), "{label}");
+    for ((a, b), [da, db]) in ids.iter().zip(pairs) {
+        let (va, vb) = (
+            world.body(*a).unwrap().velocity(),
+            world.body(*b).unwrap().velocity(),
+        );
+        assert!(
+            (va - db.velocity).length() <= 1e-12,
+            "{label}: {va} at {}",
+            da.position
+        );
+        assert!(
+            (vb - da.velocity).length() <= 1e-12,
+            "{label}: {vb} at {}",
+            db.position
+        );
+    }
+    stats
 }

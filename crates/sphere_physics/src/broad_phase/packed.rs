@@ -102,7 +102,7 @@ impl Query {
 
 /// Eight 16-bit lanes in one SSE2 register, mapped, rounded and compared in a handful of
 /// instructions.
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
 mod lanes {
     use std::arch::x86_64::{
         __m128d, __m128i, _mm_add_pd, _mm_cmpgt_epi16, _mm_cvttpd_epi32, _mm_max_pd, _mm_min_pd,
@@ -177,8 +177,9 @@ mod lanes {
     }
 }
 
-/// The same lanes as plain integers, for other processors.
-#[cfg(not(target_arch = "x86_64"))]
+/// The same lanes as plain integers, for other processors (and on x86-64 with the `portable`
+/// feature, so that the tests run this code too).
+#[cfg(any(not(target_arch = "x86_64"), feature = "portable"))]
 mod lanes {
     use super::{Aabb, BIAS, Frame, LIMIT};
 

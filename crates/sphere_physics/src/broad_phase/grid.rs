@@ -57,6 +57,12 @@ pub(crate) struct Grid {
     present: Vec<bool>,
 }
 
+/// Cell `k`'s coordinates as a vector (its low corner, in cells).
+#[inline]
+fn corner_of(k: Cell) -> DVec3 {
+    DVec3::new(f64::from(k[0]), f64::from(k[1]), f64::from(k[2]))
+}
+
 /// `floor(v)` as an integer, saturating far outside any scene.
 #[inline]
 fn floor_i32(v: f64) -> i32 {
@@ -90,7 +96,7 @@ impl Grid {
     /// every step).
     #[inline]
     fn within(&self, b: &Aabb, k: Cell) -> bool {
-        let k = DVec3::new(f64::from(k[0]), f64::from(k[1]), f64::from(k[2]));
+        let k = corner_of(k);
         let lo = k * self.cell - self.slack;
         let hi = (k + 1.0) * self.cell + self.slack;
         (b.lo.cmpge(lo) & b.hi.cmple(hi)).all()
@@ -119,12 +125,7 @@ impl Grid {
         std::mem::swap(&mut self.cells, cells);
         self.present.clear();
         self.present.resize(self.len, true);
-        let lo = DVec3::new(
-            f64::from(origin[0]),
-            f64::from(origin[1]),
-            f64::from(origin[2]),
-        ) * self.cell;
-        self.frame = Frame::new(lo, self.cell, dims);
+        self.frame = Frame::new(corner_of(origin) * self.cell, self.cell, dims);
         let frame = &self.frame;
         self.boxes.clear();
         self.boxes
@@ -349,7 +350,7 @@ impl Grid {
         if self.len == 0 {
             return;
         }
-        let coarse = Query::new(&self.frame, q);
+        let query = Query::new(&self.frame, q);
         // Cell k's envelope [k·cell − slack, (k+1)·cell + slack] overlaps [lo, hi] when
         // (lo − slack)/cell − 1 <= k <= (hi + slack)/cell; padded against rounding.
         let mut range = [(0usize, 0usize); 3];
@@ -369,7 +370,7 @@ impl Grid {
         }
         if cells > self.len {
             // A box over much of the grid: every body is cheaper than every cell.
-            scan(&coarse, 0, self.len);
+            scan(&query, 0, self.len);
             return;
         }
         let [nx, ny, _] = self.dims;
@@ -385,7 +386,7 @@ impl Grid {
                     self.start[row] as usize,
                     self.start[row + (xh - xl) + 1] as usize,
                 );
-                scan(&coarse, s, e);
+                scan(&query, s, e);
             }
         }
     }

@@ -1240,7 +1240,40 @@ impl Solver {
     }
 
     /// Queues the first impact of pair `(i, j)` (with `i < j`) in `[t, dt]`, if any.
+    ///
+    /// Most pairs tested can be dismissed at a glance (two moving spheres closing all through
+    /// the step and still apart at its end, or parting): that glance is inlined where pairs
+    /// are tested, and only the rest pay for the call to [`Solver::test_pair_fully`], which
+    /// decides every pair alike.
+    #[inline(always)]
     fn test_pair(
+        &mut self,
+        i: usize,
+        j: usize,
+        t: f64,
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let (si, sj) = (&self.segments[i], &self.segments[j]);
+        if !(si.is_fixed() || sj.is_fixed() || self.strings) && ctx.toi.is_none() {
+            let d = sj.position_at(t) - si.position_at(t);
+            let w = sj.velocity - si.velocity;
+            let reach = si.radius() + sj.radius();
+            let rest = ctx.dt - t;
+            let end_squared = (d + w * rest).length_squared();
+            // Parting, or closing but still apart at the step's end: no impact.
+            let passed = d.dot(w) >= 0.0 || cannot_touch_by(rest, d, w, end_squared, reach, ctx);
+            // Nor ending overlapping (as `test_pair_fully` reckons it): it would only return.
+            if passed && end_squared >= end_allowance(si, sj, w, reach, rest).powi(2) {
+                return;
+            }
+        }
+        self.test_pair_fully(i, j, t, ctx, stats);
+    }
+
+    /// [`Solver::test_pair`] for any pair, out of line.
+    #[inline(never)]
+    fn test_pair_fully(
         &mut self,
         i: usize,
         j: usize,
@@ -1265,12 +1298,7 @@ impl Solver {
         // either drift tests the pair again.
         let rest = ctx.dt - t;
         let end = d + w * rest;
-        // Allowing for rounding: each body's end position is reckoned on its own, from where it
-        // is, so far from the origin the two differ by more than a billionth of their reach.
-        let magnitude = si.position.abs().max_element()
-            + sj.position.abs().max_element()
-            + w.abs().max_element() * rest;
-        let allowance = reach * (1.0 + 1e-9) + 1e-12 * magnitude;
+        let allowance = end_allowance(si, sj, w, reach, rest);
         let end_squared = end.length_squared();
         let ends_overlapping = end_squared < allowance * allowance;
         if self.strings || ends_overlapping {
@@ -1572,6 +1600,17 @@ fn cannot_touch_by(
     let epsilon = ctx.settings.tolerance.epsilon();
     let far = (reach + epsilon) / (1.0 - epsilon) * (1.0 + 1e-6);
     end_squared > far * far
+}
+
+/// The distance within which a pair's ends count as overlapping (kept for the end-of-step
+/// overlap), allowing for rounding: each body's end position is reckoned on its own, from
+/// where it is, so far from the origin the two differ by more than a billionth of their reach.
+#[inline(always)]
+fn end_allowance(si: &Segment, sj: &Segment, w: DVec3, reach: f64, rest: f64) -> f64 {
+    let magnitude = si.position.abs().max_element()
+        + sj.position.abs().max_element()
+        + w.abs().max_element() * rest;
+    reach * (1.0 + 1e-9) + 1e-12 * magnitude
 }
 
 /// Whether fixed sphere `fixed`, grown by the contact margin, meets the box `other` sweeps

@@ -108,8 +108,12 @@ impl BroadPhase {
             self.counts[index(*k) + 1] += 1;
             in_grid += 1;
         }
-        for c in 0..total {
-            self.counts[c + 1] += self.counts[c];
+        // Running sums (a loop over the slice: indexing `self.counts` reloaded and
+        // bounds-checked it for each of the several cells per body).
+        let mut sum = 0;
+        for count in &mut self.counts {
+            sum += *count;
+            *count = sum;
         }
         self.grid.set_start(&self.counts);
         self.permutation.clear();

@@ -1273,10 +1273,7 @@ impl Solver {
     ) {
         let (si, sj) = (&self.segments[i], &self.segments[j]);
         if !(si.is_fixed() || sj.is_fixed() || self.strings) && ctx.toi.is_none() {
-            let d = sj.position_at(t) - si.position_at(t);
-            let w = sj.velocity - si.velocity;
-            let reach = si.radius() + sj.radius();
-            let rest = ctx.dt - t;
+            let Relative { d, w, reach, rest } = Relative::of(si, sj, t, ctx.dt);
             let end_squared = (d + w * rest).length_squared();
             // Parting, or closing but still apart at the step's end: no impact.
             let passed = d.dot(w) >= 0.0 || cannot_touch_by(rest, d, w, end_squared, reach, ctx);
@@ -1307,13 +1304,10 @@ impl Solver {
             (false, true) if !ball_meets_box(sj, si, ctx) => return,
             _ => {}
         }
-        let d = sj.position_at(t) - si.position_at(t);
-        let w = sj.velocity - si.velocity;
-        let reach = si.radius() + sj.radius();
+        let Relative { d, w, reach, rest } = Relative::of(si, sj, t, ctx.dt);
         // Kept for the end-of-step overlap if the drifts as they stand end it overlapping (or
         // a string bends a drift; an impact found below is kept too): any later change to
         // either drift tests the pair again.
-        let rest = ctx.dt - t;
         let end = d + w * rest;
         let allowance = end_allowance(si, sj, w, reach, rest);
         let end_squared = end.length_squared();
@@ -1617,6 +1611,30 @@ fn cannot_touch_by(
     let epsilon = ctx.settings.tolerance.epsilon();
     let far = (reach + epsilon) / (1.0 - epsilon) * (1.0 + 1e-6);
     end_squared > far * far
+}
+
+/// A pair of drifts seen from the first, from time `t` to the step's end.
+struct Relative {
+    /// Where the second is from the first at `t`.
+    d: DVec3,
+    /// How fast it moves from it.
+    w: DVec3,
+    /// The sum of their radii.
+    reach: f64,
+    /// The time left in the step.
+    rest: f64,
+}
+
+impl Relative {
+    #[inline(always)]
+    fn of(si: &Segment, sj: &Segment, t: f64, dt: f64) -> Self {
+        Relative {
+            d: sj.position_at(t) - si.position_at(t),
+            w: sj.velocity - si.velocity,
+            reach: si.radius() + sj.radius(),
+            rest: dt - t,
+        }
+    }
 }
 
 /// The distance within which a pair's ends count as overlapping (kept for the end-of-step

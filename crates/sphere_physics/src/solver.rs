@@ -749,7 +749,8 @@ impl Solver {
         self.partner_candidates = partner_candidates;
     }
 
-    /// Tests touched body `k` against each of its `candidates` (a pair of touched bodies once).
+    /// Tests touched body `k` against each of its `candidates` (a pair of touched bodies once;
+    /// `k` itself, touched, is skipped with them).
     fn test_candidates(
         &mut self,
         k: usize,
@@ -765,7 +766,7 @@ impl Solver {
         }
         for &m in candidates {
             let m = m as usize;
-            if m < k && self.is_touched(m) {
+            if m <= k && self.is_touched(m) {
                 continue;
             }
             self.test_pair(k.min(m), k.max(m), t, ctx, stats);

@@ -277,15 +277,14 @@ impl BroadPhase {
     }
 
     /// Appends to `out` every body `j != i` whose box may overlap body `i`'s (`boxes`
-    /// current): a superset, as [`BroadPhase::overlapping`] finds.
+    /// current): a superset, as [`BroadPhase::overlapping`] finds, which may hold `i` itself
+    /// (its own box overlaps it; a caller skips it for less than removing it costs).
     pub fn collect_overlapping(&self, i: usize, boxes: &[Aabb], out: &mut Vec<u32>) {
         if self.brute {
             self.overlapping(i, boxes, |j| out.push(j as u32));
             return;
         }
-        let from = out.len();
         self.grid.collect(&boxes[i], out);
-        remove_from(out, from, i);
         self.hierarchy
             .overlapping(i, &boxes[i], boxes, |j| out.push(j as u32));
     }
@@ -305,10 +304,7 @@ impl BroadPhase {
             self.overlapping(j, boxes, |m| out_j.push(m as u32));
             return;
         }
-        let (from_i, from_j) = (out_i.len(), out_j.len());
         self.grid.collect_both(&boxes[i], &boxes[j], out_i, out_j);
-        remove_from(out_i, from_i, i);
-        remove_from(out_j, from_j, j);
         self.hierarchy
             .overlapping(i, &boxes[i], boxes, |m| out_i.push(m as u32));
         self.hierarchy
@@ -332,12 +328,5 @@ impl BroadPhase {
             }
         });
         self.hierarchy.overlapping(i, bi, boxes, f);
-    }
-}
-
-/// Removes body `k` from the candidates `out[from..]` (a body's own query finds itself).
-fn remove_from(out: &mut Vec<u32>, from: usize, k: usize) {
-    if let Some(at) = out[from..].iter().position(|&m| m as usize == k) {
-        out.remove(from + at);
     }
 }

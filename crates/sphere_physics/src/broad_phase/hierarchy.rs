@@ -592,6 +592,33 @@ impl Hierarchy {
         }
     }
 
+    /// [`Hierarchy::overlapping`] for two bodies at once (`fa` for `a`'s, `fb` for `b`'s),
+    /// reading the bodies it holds once for both while it holds few.
+    pub fn overlapping_both(
+        &self,
+        (a, qa): (usize, &Aabb),
+        (b, qb): (usize, &Aabb),
+        boxes: &[Aabb],
+        mut fa: impl FnMut(usize),
+        mut fb: impl FnMut(usize),
+    ) {
+        if self.held <= HELD_FEW {
+            for &j in &self.few {
+                let j = j as usize;
+                let bj = &boxes[j];
+                if j != a && qa.overlaps(bj) {
+                    fa(j);
+                }
+                if j != b && qb.overlaps(bj) {
+                    fb(j);
+                }
+            }
+            return;
+        }
+        self.overlapping(a, qa, boxes, fa);
+        self.overlapping(b, qb, boxes, fb);
+    }
+
     /// Calls `f(j)` for every body `j != i` it holds whose box overlaps `q` (`boxes` current).
     pub fn overlapping(&self, i: usize, q: &Aabb, boxes: &[Aabb], mut f: impl FnMut(usize)) {
         if self.held <= HELD_FEW {

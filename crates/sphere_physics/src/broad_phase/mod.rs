@@ -305,10 +305,13 @@ impl BroadPhase {
             return;
         }
         self.grid.collect_both(&boxes[i], &boxes[j], out_i, out_j);
-        self.hierarchy
-            .overlapping(i, &boxes[i], boxes, |m| out_i.push(m as u32));
-        self.hierarchy
-            .overlapping(j, &boxes[j], boxes, |m| out_j.push(m as u32));
+        self.hierarchy.overlapping_both(
+            (i, &boxes[i]),
+            (j, &boxes[j]),
+            boxes,
+            |m| out_i.push(m as u32),
+            |m| out_j.push(m as u32),
+        );
     }
 
     /// Calls `f(j)` for every body `j != i` whose box overlaps body `i`'s (`boxes` current).

@@ -519,7 +519,14 @@ impl Solver {
         let mut test_batch = |solver: &mut Self, batch: &[(u32, u32)]| {
             for &(i, j) in batch {
                 let (i, j) = (i as usize, j as usize);
-                if !(solver.may_rest(i, j, ctx) && solver.resting_contact(i, j, ctx)) {
+                let rests = if solver.may_rest(i, j, ctx) {
+                    solver.resting_contact(i, j, ctx)
+                } else {
+                    // The glance must not miss a resting pair (checked in debug builds).
+                    debug_assert!(!solver.resting_contact(i, j, ctx), "resting pair missed");
+                    false
+                };
+                if !rests {
                     solver.test_pair(i, j, 0.0, ctx, stats);
                 }
             }
@@ -1260,9 +1267,10 @@ impl Solver {
     /// Queues the first impact of pair `(i, j)` (with `i < j`) in `[t, dt]`, if any.
     ///
     /// Most pairs tested can be dismissed at a glance (two moving spheres closing all through
-    /// the step and still apart at its end, or parting): that glance is inlined where pairs
-    /// are tested, and only the rest pay for the call to [`Solver::test_pair_fully`], which
-    /// decides every pair alike.
+    /// the step and still apart at its end, or parting, and not ending the step overlapping):
+    /// that glance is inlined where pairs are tested, and only the rest pay for the call to
+    /// [`Solver::test_pair_fully`], which decides every pair alike. Debug builds check each
+    /// dismissal against the full test: it finds no impact and keeps nothing.
     #[inline(always)]
     fn test_pair(
         &mut self,
@@ -1279,8 +1287,21 @@ impl Solver {
             // Parting, or closing but still apart at the step's end: no impact.
             let passed = d.dot(w) >= 0.0 || cannot_touch_by(rest, d, w, end_squared, reach, ctx);
             // Nor ending overlapping (as `test_pair_fully` reckons it): it would only return.
-            if passed && end_squared >= end_allowance(si, sj, w, reach, rest).powi(2) {
-                return;
+            if passed {
+                let allowance = end_allowance(si, sj, w, reach, rest);
+                if end_squared >= allowance * allowance {
+                    #[cfg(debug_assertions)]
+                    {
+                        let (tested, tests) = (self.tested.len(), stats.toi_tests);
+                        self.test_pair_fully(i, j, t, ctx, stats);
+                        // Every impact queued was first sought by the method (counted).
+                        assert!(
+                            self.tested.len() == tested && stats.toi_tests == tests,
+                            "pair ({i}, {j}) dismissed at a glance, but the full test acted on it"
+                        );
+                    }
+                    return;
+                }
             }
         }
         self.test_pair_fully(i, j, t, ctx, stats);

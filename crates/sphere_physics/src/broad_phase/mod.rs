@@ -276,9 +276,9 @@ impl BroadPhase {
         }
     }
 
-    /// Appends to `out` every body `j != i` whose box may overlap body `i`'s (`boxes`
-    /// current): a superset, as [`BroadPhase::overlapping`] finds, which may hold `i` itself
-    /// (its own box overlaps it; a caller skips it for less than removing it costs).
+    /// Appends to `out` every body whose box may overlap body `i`'s (`boxes` current): a
+    /// superset of what [`BroadPhase::overlapping`] finds, and it may hold `i` itself (its own
+    /// box overlaps it: a caller skips it for less than removing it would cost).
     pub fn collect_overlapping(&self, i: usize, boxes: &[Aabb], out: &mut Vec<u32>) {
         if self.brute {
             self.overlapping(i, boxes, |j| out.push(j as u32));

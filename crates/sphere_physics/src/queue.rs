@@ -125,8 +125,17 @@ impl<T: Timed> EventQueue<T> {
         self.waiting += 1;
     }
 
-    /// Makes `current` hold the earliest items, moving on to later buckets as needed.
+    /// Makes `current` hold the earliest items, moving on to later buckets as needed: a check
+    /// inlined into every pop and peek, and the work, when there is some, out of line.
+    #[inline(always)]
     fn fill(&mut self) {
+        if self.current.is_empty() && self.spill.is_empty() && self.waiting > 0 {
+            self.refill();
+        }
+    }
+
+    #[inline(never)]
+    fn refill(&mut self) {
         while self.current.is_empty() && self.spill.is_empty() && self.waiting > 0 {
             self.at += 1;
             // The next bucket's newest chunk will be read soon: ask for it now.

@@ -1017,9 +1017,12 @@ impl Solver {
     }
 
     /// Records segment `k` as [`Solver::unbounded`] if its new drift leaves the finite range.
+    #[inline]
     fn check_bounded(&mut self, k: usize) {
-        let b = &self.boxes[k];
-        if !(b.lo.is_finite() && b.hi.is_finite() && self.segments[k].velocity.is_finite()) {
+        let (b, v) = (&self.boxes[k], self.segments[k].velocity);
+        // `x - x` is 0 for every finite `x` and NaN for an infinite or NaN one: one comparison
+        // for all nine values, without a branch each.
+        if (b.lo - b.lo) + (b.hi - b.hi) + (v - v) != DVec3::ZERO {
             self.unbounded.get_or_insert(k);
         }
     }

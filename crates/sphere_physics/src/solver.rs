@@ -1018,6 +1018,8 @@ impl Solver {
 
     /// Records segment `k` as [`Solver::unbounded`] if its new drift leaves the finite range.
     #[inline]
+    // `x - x` below is the point, not a slip.
+    #[allow(clippy::eq_op)]
     fn check_bounded(&mut self, k: usize) {
         let (b, v) = (&self.boxes[k], self.segments[k].velocity);
         // `x - x` is 0 for every finite `x` and NaN for an infinite or NaN one: one comparison

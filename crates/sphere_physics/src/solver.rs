@@ -1364,12 +1364,11 @@ impl Solver {
             return;
         }
         let outcome = match ctx.toi {
-            Some(custom) => custom.time_of_impact(d, w, reach, ctx.dt - t, ctx.settings.tolerance),
-            None => {
-                ctx.settings
-                    .method
-                    .time_of_impact(d, w, reach, ctx.dt - t, ctx.settings.tolerance)
-            }
+            Some(custom) => custom.time_of_impact(d, w, reach, rest, ctx.settings.tolerance),
+            None => ctx
+                .settings
+                .method
+                .time_of_impact(d, w, reach, rest, ctx.settings.tolerance),
         };
         stats.toi_tests += 1;
         stats.toi_iterations += u64::from(outcome.iterations);

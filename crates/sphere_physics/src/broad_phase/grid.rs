@@ -192,12 +192,17 @@ impl Grid {
             let bi = &boxes[i].as_query();
             let mut kept = 0;
             // Own cell (after i) and the next along x: one range. Then four rows of three.
+            debug_assert!(c + rows[3] + 3 < start.len());
+            // SAFETY: the body's cell lies inside the block's empty border, so the cells read
+            // (up to x + 1, y + 1, z + 1, and the start of the cell after it) are in the block,
+            // whose starts `start` holds, with one more for the end.
+            let at = |offset: usize| unsafe { *start.get_unchecked(c + offset) } as usize;
             let ranges = [
-                (i + 1, start[c + 2] as usize),
-                (start[c + rows[0]] as usize, start[c + rows[0] + 3] as usize),
-                (start[c + rows[1]] as usize, start[c + rows[1] + 3] as usize),
-                (start[c + rows[2]] as usize, start[c + rows[2] + 3] as usize),
-                (start[c + rows[3]] as usize, start[c + rows[3] + 3] as usize),
+                (i + 1, at(2)),
+                (at(rows[0]), at(rows[0] + 3)),
+                (at(rows[1]), at(rows[1] + 3)),
+                (at(rows[2]), at(rows[2] + 3)),
+                (at(rows[3]), at(rows[3] + 3)),
             ];
             for (from, to) in ranges {
                 if kept + (to - from) + BLOCK > FOUND {
@@ -217,8 +222,15 @@ impl Grid {
                 loop {
                     for b in 0..BLOCK {
                         let m = j + b;
-                        found[kept] = m as u32;
-                        kept += usize::from((m < to) & boxes[m].meets(bi));
+                        debug_assert!(kept < FOUND && m < boxes.len());
+                        // SAFETY: `m < to + BLOCK <= len + BLOCK`, the boxes' length with their
+                        // padding; and `kept < FOUND`: it started at most `FOUND - (to - from)
+                        // - BLOCK` (checked above) and has grown by at most one for each box
+                        // before this one in the row, fewer than `(to - from) + BLOCK`.
+                        unsafe {
+                            *found.get_unchecked_mut(kept) = m as u32;
+                            kept += usize::from((m < to) & boxes.get_unchecked(m).meets(bi));
+                        }
                     }
                     j += BLOCK;
                     if j >= to {
@@ -257,7 +269,10 @@ impl Grid {
         for &(from, to) in rows {
             let (from, to) = (from as usize, to as usize);
             for (offset, bj) in self.boxes[from..to].iter().enumerate() {
-                slots[kept] = (from + offset) as u32;
+                debug_assert!(kept < slots.len());
+                // SAFETY: `kept` counts at most the boxes before this one, fewer than the
+                // rows' total, the slots' length.
+                unsafe { *slots.get_unchecked_mut(kept) = (from + offset) as u32 };
                 kept += usize::from(bj.meets(q));
             }
         }
@@ -314,10 +329,15 @@ impl Grid {
             let (from, to) = (from as usize, to as usize);
             for (offset, bj) in self.boxes[from..to].iter().enumerate() {
                 let index = (from + offset) as u32;
-                slots_a[kept_a] = index;
-                kept_a += usize::from(bj.meets(qa));
-                slots_b[kept_b] = index;
-                kept_b += usize::from(bj.meets(qb));
+                debug_assert!(kept_a < slots_a.len() && kept_b < slots_b.len());
+                // SAFETY: each count is at most the boxes before this one, fewer than the
+                // rows' total, both slots' length.
+                unsafe {
+                    *slots_a.get_unchecked_mut(kept_a) = index;
+                    kept_a += usize::from(bj.meets(qa));
+                    *slots_b.get_unchecked_mut(kept_b) = index;
+                    kept_b += usize::from(bj.meets(qb));
+                }
             }
         }
         out_a.truncate(base_a + kept_a);

@@ -420,6 +420,8 @@ impl Solver {
         self.strung.clear();
         self.boxes.clear();
         let mut dynamic = 0u32;
+        // Whether anything accelerates: the largest component of any acceleration (no square
+        // root per body; and a tiny acceleration whose length would underflow still counts).
         let mut largest_acceleration = 0.0f64;
         self.strings = false;
         let mut overflow = None;
@@ -429,7 +431,7 @@ impl Solver {
             } else {
                 dynamic += 1;
                 let a = settings.gravity + body.force() * body.inverse_mass();
-                largest_acceleration = largest_acceleration.max(a.length());
+                largest_acceleration = largest_acceleration.max(a.abs().max_element());
                 let k = match ctx.integrator {
                     Some(custom) => custom.kicks(body.velocity(), a, dt),
                     None => settings.integrator.kicks(body.velocity(), a, dt),

@@ -26,6 +26,13 @@ const PREFETCHED_ROWS: usize = 9;
 /// left a mispredicted branch at the end of most rows (both slower, measured).
 const BLOCK: usize = 2;
 
+/// Rows a query reads in one pass ([`Grid::one_pass_rows`]): three by three (y, z).
+const ONE_PASS_ROWS: usize = 9;
+
+/// The most bodies a row may hold for the one pass (a longer one, rare, sends the query to
+/// the row-by-row scan).
+const ONE_PASS_ROW: usize = 32;
+
 /// Partners [`Grid::pairs`] finds for a body before handing them over.
 const FOUND: usize = 64;
 
@@ -55,6 +62,58 @@ pub(crate) struct Grid {
     frame: Frame,
     /// Whether grid body `i` is still in the grid (it leaves when its box leaves its envelope).
     present: Vec<bool>,
+    /// Scratch for a query's bodies, row after row ([`Grid::one_pass_rows`]).
+    flat: Vec<u32>,
+}
+
+/// Indices appended to a list without filling its new slots first: each offered index is
+/// written past the list's end and kept by advancing past it only if wanted, with no branch on
+/// that (whether a box overlaps is a coin toss the branch predictor loses).
+struct Kept<'a> {
+    out: &'a mut Vec<u32>,
+    /// The first new slot.
+    slots: *mut u32,
+    kept: usize,
+    /// How many offers there is room for.
+    room: usize,
+}
+
+impl<'a> Kept<'a> {
+    /// Room for `room` offers at the end of `out`.
+    #[inline(always)]
+    fn new(out: &'a mut Vec<u32>, room: usize) -> Self {
+        out.reserve(room);
+        // SAFETY: `out.len()` is within its allocation (one past its end at most).
+        let slots = unsafe { out.as_mut_ptr().add(out.len()) };
+        Kept {
+            out,
+            slots,
+            kept: 0,
+            room,
+        }
+    }
+
+    /// Writes `j` into the next slot, and keeps it if `keep`.
+    ///
+    /// # Safety
+    /// At most `room` offers in all (as given to [`Kept::new`]).
+    #[inline(always)]
+    unsafe fn offer(&mut self, j: u32, keep: bool) {
+        debug_assert!(self.kept < self.room);
+        // SAFETY: `kept` is at most the offers before this one, fewer than `room` (the
+        // caller's promise): the slot lies within the capacity reserved.
+        unsafe { self.slots.add(self.kept).write(j) };
+        self.kept += usize::from(keep);
+    }
+
+    /// Adds the kept indices to the list.
+    #[inline(always)]
+    fn finish(self) {
+        let len = self.out.len() + self.kept;
+        // SAFETY: the slots up to `kept` were all written (each offer writes the slot at
+        // `kept` before it may advance), within the capacity reserved.
+        unsafe { self.out.set_len(len) };
+    }
 }
 
 /// Cell `k`'s coordinates as a vector (its low corner, in cells).
@@ -261,22 +320,15 @@ impl Grid {
     /// if it overlaps. `out` grows once for all the rows.
     #[inline]
     fn collect_in(&self, q: &Query, rows: &[(u32, u32)], out: &mut Vec<u32>) {
-        let base = out.len();
         let total: u32 = rows.iter().map(|&(from, to)| to - from).sum();
-        out.resize(base + total as usize, 0);
-        let slots = &mut out[base..];
-        let mut kept = 0;
+        let mut kept = Kept::new(out, total as usize);
         for &(from, to) in rows {
-            let (from, to) = (from as usize, to as usize);
-            for (offset, bj) in self.boxes[from..to].iter().enumerate() {
-                debug_assert!(kept < slots.len());
-                // SAFETY: `kept` counts at most the boxes before this one, fewer than the
-                // rows' total, the slots' length.
-                unsafe { *slots.get_unchecked_mut(kept) = (from + offset) as u32 };
-                kept += usize::from(bj.meets(q));
+            for (j, bj) in (from..to).zip(&self.boxes[from as usize..to as usize]) {
+                // SAFETY: one offer per box of the rows, `total` in all.
+                unsafe { kept.offer(j, bj.meets(q)) };
             }
         }
-        out.truncate(base + kept);
+        kept.finish();
     }
 
     /// Calls `scan` with `q` packed and the ranges of grid bodies whose cells'
@@ -306,7 +358,22 @@ impl Grid {
 
     /// Appends to `out` every body in the grid whose box may overlap `q` (a superset: the
     /// grid compares boxes packed into integers, see `packed`).
-    pub fn collect(&self, q: &Aabb, out: &mut Vec<u32>) {
+    pub fn collect(&mut self, q: &Aabb, out: &mut Vec<u32>) {
+        if self.len == 0 {
+            return;
+        }
+        if let Some(total) = self.one_pass_rows(q) {
+            let query = Query::new(&self.frame, q);
+            let mut kept = Kept::new(out, total);
+            for &j in &self.flat[..total] {
+                debug_assert!((j as usize) < self.boxes.len());
+                // SAFETY: `j` is a grid body, one of `boxes`; one offer per body, `total` in
+                // all.
+                unsafe { kept.offer(j, self.boxes.get_unchecked(j as usize).meets(&query)) };
+            }
+            kept.finish();
+            return;
+        }
         self.scan_rows(q, &mut |query, rows| self.collect_in(query, rows, out));
     }
 
@@ -319,39 +386,51 @@ impl Grid {
         rows: &[(u32, u32)],
         (out_a, out_b): (&mut Vec<u32>, &mut Vec<u32>),
     ) {
-        let (base_a, base_b) = (out_a.len(), out_b.len());
         let total: u32 = rows.iter().map(|&(from, to)| to - from).sum();
-        out_a.resize(base_a + total as usize, 0);
-        out_b.resize(base_b + total as usize, 0);
-        let (slots_a, slots_b) = (&mut out_a[base_a..], &mut out_b[base_b..]);
-        let (mut kept_a, mut kept_b) = (0, 0);
+        let (mut kept_a, mut kept_b) = (
+            Kept::new(out_a, total as usize),
+            Kept::new(out_b, total as usize),
+        );
         for &(from, to) in rows {
-            let (from, to) = (from as usize, to as usize);
-            for (offset, bj) in self.boxes[from..to].iter().enumerate() {
-                let index = (from + offset) as u32;
-                debug_assert!(kept_a < slots_a.len() && kept_b < slots_b.len());
-                // SAFETY: each count is at most the boxes before this one, fewer than the
-                // rows' total, both slots' length.
+            for (j, bj) in (from..to).zip(&self.boxes[from as usize..to as usize]) {
+                // SAFETY: one offer to each per box of the rows, `total` in all.
                 unsafe {
-                    *slots_a.get_unchecked_mut(kept_a) = index;
-                    kept_a += usize::from(bj.meets(qa));
-                    *slots_b.get_unchecked_mut(kept_b) = index;
-                    kept_b += usize::from(bj.meets(qb));
+                    kept_a.offer(j, bj.meets(qa));
+                    kept_b.offer(j, bj.meets(qb));
                 }
             }
         }
-        out_a.truncate(base_a + kept_a);
-        out_b.truncate(base_b + kept_b);
+        kept_a.finish();
+        kept_b.finish();
     }
 
     /// [`Grid::collect`] for two boxes at once (`a`'s candidates into `out_a`, `b`'s into
     /// `out_b`), scanning the rows around both once.
-    pub fn collect_both(&self, a: &Aabb, b: &Aabb, out_a: &mut Vec<u32>, out_b: &mut Vec<u32>) {
+    pub fn collect_both(&mut self, a: &Aabb, b: &Aabb, out_a: &mut Vec<u32>, out_b: &mut Vec<u32>) {
+        if self.len == 0 {
+            return;
+        }
         let both = Aabb {
             lo: a.lo.min(b.lo),
             hi: a.hi.max(b.hi),
         };
         let (qa, qb) = (Query::new(&self.frame, a), Query::new(&self.frame, b));
+        if let Some(total) = self.one_pass_rows(&both) {
+            let (mut kept_a, mut kept_b) = (Kept::new(out_a, total), Kept::new(out_b, total));
+            for &j in &self.flat[..total] {
+                debug_assert!((j as usize) < self.boxes.len());
+                // SAFETY: `j` is a grid body, one of `boxes`; one offer to each per body,
+                // `total` in all.
+                unsafe {
+                    let bj = self.boxes.get_unchecked(j as usize);
+                    kept_a.offer(j, bj.meets(&qa));
+                    kept_b.offer(j, bj.meets(&qb));
+                }
+            }
+            kept_a.finish();
+            kept_b.finish();
+            return;
+        }
         self.scan_rows(&both, &mut |_, rows| {
             self.collect_both_in((&qa, &qb), rows, (&mut *out_a, &mut *out_b))
         });
@@ -363,6 +442,30 @@ impl Grid {
         self.visit_rows(q, &mut |query, from, to| self.visit_in(query, from, to, f));
     }
 
+    /// The cells whose envelopes may meet `q`, per axis (inclusive, as offsets into the block),
+    /// and how many they are; `None` if none are in the block.
+    #[inline]
+    fn cell_range(&self, q: &Aabb) -> Option<([(usize, usize); 3], usize)> {
+        let mut range = [(0usize, 0usize); 3];
+        let mut cells = 1usize;
+        for (a, r) in range.iter_mut().enumerate() {
+            // Cell k's envelope [k·cell − slack, (k+1)·cell + slack] overlaps [lo, hi] when
+            // (lo − slack)/cell − 1 <= k <= (hi + slack)/cell; padded against rounding.
+            // ceil(v) = -floor(-v)
+            let lo = -floor_i32(-((q.lo[a] - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7));
+            let hi = floor_i32((q.hi[a] + self.slack[a]) * self.inverse[a] + 1e-7);
+            let first = self.origin[a];
+            let last = first + (self.dims[a] - 1) as i32;
+            let (lo, hi) = (lo.max(first), hi.min(last));
+            if lo > hi {
+                return None;
+            }
+            *r = ((lo - first) as usize, (hi - first) as usize);
+            cells = cells.saturating_mul(r.1 - r.0 + 1);
+        }
+        Some((range, cells))
+    }
+
     /// Calls `scan(q packed, from, to)` for each range of grid bodies whose cells'
     /// envelopes may meet `q`.
     #[inline]
@@ -371,23 +474,9 @@ impl Grid {
             return;
         }
         let query = Query::new(&self.frame, q);
-        // Cell k's envelope [k·cell − slack, (k+1)·cell + slack] overlaps [lo, hi] when
-        // (lo − slack)/cell − 1 <= k <= (hi + slack)/cell; padded against rounding.
-        let mut range = [(0usize, 0usize); 3];
-        let mut cells = 1usize;
-        for (a, r) in range.iter_mut().enumerate() {
-            // ceil(v) = -floor(-v)
-            let lo = -floor_i32(-((q.lo[a] - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7));
-            let hi = floor_i32((q.hi[a] + self.slack[a]) * self.inverse[a] + 1e-7);
-            let first = self.origin[a];
-            let last = first + (self.dims[a] - 1) as i32;
-            let (lo, hi) = (lo.max(first), hi.min(last));
-            if lo > hi {
-                return;
-            }
-            *r = ((lo - first) as usize, (hi - first) as usize);
-            cells = cells.saturating_mul(r.1 - r.0 + 1);
-        }
+        let Some((range, cells)) = self.cell_range(q) else {
+            return;
+        };
         if cells > self.len {
             // A box over much of the grid: every body is cheaper than every cell.
             scan(&query, 0, self.len);
@@ -409,6 +498,62 @@ impl Grid {
                 scan(&query, s, e);
             }
         }
+    }
+
+    /// Writes into `flat` the grid bodies whose cells' envelopes may meet `q`, row after row,
+    /// and returns how many, when they lie in at most three by three rows (y, z) of at most
+    /// [`ONE_PASS_ROW`] bodies each (nearly every query after an impact); `None` otherwise.
+    ///
+    /// Every row is read, and every row's slots written, whatever its length: a scan row by
+    /// row mispredicts the end of nearly every row (their lengths are coin tosses), and a
+    /// query reads nine. The bodies then take one pass, one loop.
+    #[inline]
+    fn one_pass_rows(&mut self, q: &Aabb) -> Option<usize> {
+        let (range, cells) = self.cell_range(q)?;
+        let ([xl, xh], [yl, yh], [zl, zh]) = (
+            [range[0].0, range[0].1],
+            [range[1].0, range[1].1],
+            [range[2].0, range[2].1],
+        );
+        if cells > self.len || yh - yl > 2 || zh - zl > 2 {
+            return None;
+        }
+        let [nx, ny, _] = self.dims;
+        let width = xh - xl + 1;
+        // Rows beyond the range read the last one in range, and count as empty.
+        let mut rows = [(0u32, 0u32); ONE_PASS_ROWS];
+        let mut longest = 0;
+        for (r, row) in rows.iter_mut().enumerate() {
+            let (dy, dz) = (r % 3, r / 3);
+            let (y, z) = ((yl + dy).min(yh), (zl + dz).min(zh));
+            let cell = xl + nx * (y + ny * z);
+            let (from, to) = (self.start[cell], self.start[cell + width]);
+            let len = if (yl + dy <= yh) & (zl + dz <= zh) {
+                to - from
+            } else {
+                0
+            };
+            longest = longest.max(len);
+            *row = (from, len);
+        }
+        if longest as usize > ONE_PASS_ROW {
+            return None;
+        }
+        let flat = &mut self.flat;
+        flat.resize(ONE_PASS_ROWS * ONE_PASS_ROW, 0);
+        let mut total = 0;
+        for (from, len) in rows {
+            // The rows lie far apart in memory: ask for each now, so that their loads overlap.
+            if let Some(first) = self.boxes.get(from as usize) {
+                crate::solver::prefetch(first);
+            }
+            let slots = &mut flat[total..total + ONE_PASS_ROW];
+            for (offset, slot) in slots.iter_mut().enumerate() {
+                *slot = from + offset as u32;
+            }
+            total += len as usize;
+        }
+        Some(total)
     }
 }
 

@@ -279,7 +279,7 @@ impl BroadPhase {
     /// Appends to `out` every body whose box may overlap body `i`'s (`boxes` current): a
     /// superset of what [`BroadPhase::overlapping`] finds, and it may hold `i` itself (its own
     /// box overlaps it: a caller skips it for less than removing it would cost).
-    pub fn collect_overlapping(&self, i: usize, boxes: &[Aabb], out: &mut Vec<u32>) {
+    pub fn collect_overlapping(&mut self, i: usize, boxes: &[Aabb], out: &mut Vec<u32>) {
         if self.brute {
             self.overlapping(i, boxes, |j| out.push(j as u32));
             return;
@@ -293,7 +293,7 @@ impl BroadPhase {
     /// `out_i` and `j`'s into `out_j` (the same sets), scanning the grid once for both: for
     /// bodies side by side, whose queries read nearly the same rows.
     pub fn collect_overlapping_both(
-        &self,
+        &mut self,
         (i, j): (usize, usize),
         boxes: &[Aabb],
         out_i: &mut Vec<u32>,

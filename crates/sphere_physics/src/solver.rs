@@ -1294,20 +1294,23 @@ impl Solver {
         stats: &mut StepStats,
     ) {
         let (si, sj) = (&self.segments[i], &self.segments[j]);
+        let glance = Glance::of(si, sj, t, ctx.dt);
         if !self.strings && ctx.toi.is_none() {
-            let Relative { d, w, reach, rest } = Relative::of(si, sj, t, ctx.dt);
-            let end_squared = (d + w * rest).length_squared();
+            let Glance {
+                relative: Relative { d, w, reach, rest },
+                end_squared,
+                allowance,
+            } = glance;
             // Parting, or closing but still apart at the step's end: no impact. Nor ending
             // overlapping (as `test_pair_fully` reckons it): it would only return. The
             // conditions are combined without branches (`|`, `&`): one branch, on the outcome.
             let passed =
                 (d.dot(w) >= 0.0) | cannot_touch_by(rest, d, w, end_squared, reach, self.apart);
-            let allowance = end_allowance(si, sj, w, reach, rest);
             if passed & (end_squared >= allowance * allowance) {
                 #[cfg(debug_assertions)]
                 {
                     let (tested, tests) = (self.tested.len(), stats.toi_tests);
-                    self.test_pair_fully(i, j, t, ctx, stats);
+                    self.test_pair_fully(i, j, t, &glance, ctx, stats);
                     // Every impact queued was first sought by the method (counted).
                     assert!(
                         self.tested.len() == tested && stats.toi_tests == tests,
@@ -1317,16 +1320,17 @@ impl Solver {
                 return;
             }
         }
-        self.test_pair_fully(i, j, t, ctx, stats);
+        self.test_pair_fully(i, j, t, &glance, ctx, stats);
     }
 
-    /// [`Solver::test_pair`] for any pair, out of line.
+    /// [`Solver::test_pair`] for any pair, out of line, with what the glance worked out.
     #[inline(never)]
     fn test_pair_fully(
         &mut self,
         i: usize,
         j: usize,
         t: f64,
+        glance: &Glance,
         ctx: &StepContext<'_>,
         stats: &mut StepStats,
     ) {
@@ -1339,13 +1343,14 @@ impl Solver {
             (false, true) if !ball_meets_box(sj, si, ctx) => return,
             _ => {}
         }
-        let Relative { d, w, reach, rest } = Relative::of(si, sj, t, ctx.dt);
+        let Glance {
+            relative: Relative { d, w, reach, rest },
+            end_squared,
+            allowance,
+        } = *glance;
         // Kept for the end-of-step overlap if the drifts as they stand end it overlapping (or
         // a string bends a drift; an impact found below is kept too): any later change to
         // either drift tests the pair again.
-        let end = d + w * rest;
-        let allowance = end_allowance(si, sj, w, reach, rest);
-        let end_squared = end.length_squared();
         let ends_overlapping = end_squared < allowance * allowance;
         if self.strings || ends_overlapping {
             self.tested.push((i as u32, j as u32));
@@ -1669,7 +1674,32 @@ fn cannot_touch_by(
         & (end_squared > far * far)
 }
 
+/// A pair's [`Relative`] drifts and how far apart they end the step, against how near counts
+/// as overlapping then: worked out by the glance, and handed on to the full test.
+#[derive(Clone, Copy)]
+struct Glance {
+    relative: Relative,
+    /// `|d + w·rest|²`.
+    end_squared: f64,
+    /// See [`end_allowance`].
+    allowance: f64,
+}
+
+impl Glance {
+    #[inline(always)]
+    fn of(si: &Segment, sj: &Segment, t: f64, dt: f64) -> Self {
+        let relative = Relative::of(si, sj, t, dt);
+        let Relative { d, w, reach, rest } = relative;
+        Glance {
+            relative,
+            end_squared: (d + w * rest).length_squared(),
+            allowance: end_allowance(si, sj, w, reach, rest),
+        }
+    }
+}
+
 /// A pair of drifts seen from the first, from time `t` to the step's end.
+#[derive(Clone, Copy)]
 struct Relative {
     /// Where the second is from the first at `t`.
     d: DVec3,

@@ -777,12 +777,37 @@ impl Solver {
             // loop's reads are random, and waiting for each in turn dominated them.
             prefetch(&self.segments[m as usize]);
         }
+        if self.strings || ctx.toi.is_some() {
+            for &m in candidates {
+                let m = m as usize;
+                if m <= k && self.is_touched(m) {
+                    continue;
+                }
+                self.test_pair(k.min(m), k.max(m), t, ctx, stats);
+            }
+            return;
+        }
+        // The glance as `test_pair` takes it, but from `k`'s side whichever body comes first:
+        // `k`'s part of it is worked out once for all its candidates (the compiler cannot
+        // hoist it, the full test between the glances being free to change any segment).
+        let side = Side::of(&self.segments[k], t, ctx.dt);
         for &m in candidates {
             let m = m as usize;
             if m <= k && self.is_touched(m) {
                 continue;
             }
-            self.test_pair(k.min(m), k.max(m), t, ctx, stats);
+            let (i, j) = (k.min(m), k.max(m));
+            let glance = side.glance(&self.segments[m]);
+            // Seen from the first body of the pair: the same numbers, negated if `k` is the
+            // second (negation is exact, and every quantity the glance compares is even in
+            // the relative drift, so its outcome is the same either way, bit for bit).
+            let glance = if m < k { glance.turned() } else { glance };
+            #[cfg(debug_assertions)]
+            assert!(
+                glance.same_as(&Glance::of(&self.segments[i], &self.segments[j], t, ctx.dt)),
+                "the glance from body {k}'s side differs from the pair's ({i}, {j})"
+            );
+            self.test_glanced(i, j, t, &glance, ctx, stats);
         }
     }
 
@@ -1296,31 +1321,47 @@ impl Solver {
         let (si, sj) = (&self.segments[i], &self.segments[j]);
         let glance = Glance::of(si, sj, t, ctx.dt);
         if !self.strings && ctx.toi.is_none() {
-            let Glance {
-                relative: Relative { d, w, reach, rest },
-                end_squared,
-                allowance,
-            } = glance;
-            // Parting, or closing but still apart at the step's end: no impact. Nor ending
-            // overlapping (as `test_pair_fully` reckons it): it would only return. The
-            // conditions are combined without branches (`|`, `&`): one branch, on the outcome.
-            let passed =
-                (d.dot(w) >= 0.0) | cannot_touch_by(rest, d, w, end_squared, reach, self.apart);
-            if passed & (end_squared >= allowance * allowance) {
-                #[cfg(debug_assertions)]
-                {
-                    let (tested, tests) = (self.tested.len(), stats.toi_tests);
-                    self.test_pair_fully(i, j, t, &glance, ctx, stats);
-                    // Every impact queued was first sought by the method (counted).
-                    assert!(
-                        self.tested.len() == tested && stats.toi_tests == tests,
-                        "pair ({i}, {j}) dismissed at a glance, but the full test acted on it"
-                    );
-                }
-                return;
-            }
+            self.test_glanced(i, j, t, &glance, ctx, stats);
+        } else {
+            self.test_pair_fully(i, j, t, &glance, ctx, stats);
         }
-        self.test_pair_fully(i, j, t, &glance, ctx, stats);
+    }
+
+    /// [`Solver::test_pair`] with its glance worked out (no strings, a built-in method).
+    #[inline(always)]
+    fn test_glanced(
+        &mut self,
+        i: usize,
+        j: usize,
+        t: f64,
+        glance: &Glance,
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let Glance {
+            relative: Relative { d, w, reach, rest },
+            end_squared,
+            allowance,
+        } = *glance;
+        // Parting, or closing but still apart at the step's end: no impact. Nor ending
+        // overlapping (as `test_pair_fully` reckons it): it would only return. The
+        // conditions are combined without branches (`|`, `&`): one branch, on the outcome.
+        let passed =
+            (d.dot(w) >= 0.0) | cannot_touch_by(rest, d, w, end_squared, reach, self.apart);
+        if passed & (end_squared >= allowance * allowance) {
+            #[cfg(debug_assertions)]
+            {
+                let (tested, tests) = (self.tested.len(), stats.toi_tests);
+                self.test_pair_fully(i, j, t, glance, ctx, stats);
+                // Every impact queued was first sought by the method (counted).
+                assert!(
+                    self.tested.len() == tested && stats.toi_tests == tests,
+                    "pair ({i}, {j}) dismissed at a glance, but the full test acted on it"
+                );
+            }
+            return;
+        }
+        self.test_pair_fully(i, j, t, glance, ctx, stats);
     }
 
     /// [`Solver::test_pair`] for any pair, out of line, with what the glance worked out.
@@ -1696,6 +1737,77 @@ impl Glance {
             allowance: end_allowance(si, sj, w, reach, rest),
         }
     }
+
+    /// The same glance seen from the other body: the relative drifts negated.
+    #[inline(always)]
+    fn turned(self) -> Self {
+        Glance {
+            relative: Relative {
+                d: -self.relative.d,
+                w: -self.relative.w,
+                ..self.relative
+            },
+            ..self
+        }
+    }
+
+    /// Whether two glances hold the same numbers, taking any NaN as the same (drifts that
+    /// overflow; debug checks).
+    #[cfg(debug_assertions)]
+    fn same_as(&self, other: &Glance) -> bool {
+        let same = |x: f64, y: f64| x == y || (x.is_nan() && y.is_nan());
+        let (a, b) = (&self.relative, &other.relative);
+        (0..3).all(|k| same(a.d[k], b.d[k]) && same(a.w[k], b.w[k]))
+            && same(a.reach, b.reach)
+            && same(a.rest, b.rest)
+            && same(self.end_squared, other.end_squared)
+            && same(self.allowance, other.allowance)
+    }
+}
+
+/// One body's part of the glances at its pairs from time `t` (see [`Side::glance`]).
+#[derive(Clone, Copy)]
+struct Side {
+    /// Where it is at `t`.
+    position: DVec3,
+    velocity: DVec3,
+    radius: f64,
+    /// Its largest coordinate at the start of its drift (see [`end_allowance`]).
+    magnitude: f64,
+    /// The time the glances look from.
+    t: f64,
+    /// The time left in the step.
+    rest: f64,
+}
+
+impl Side {
+    #[inline(always)]
+    fn of(segment: &Segment, t: f64, dt: f64) -> Self {
+        Side {
+            position: segment.position_at(t),
+            velocity: segment.velocity,
+            radius: segment.radius(),
+            magnitude: segment.position.abs().max_element(),
+            t,
+            rest: dt - t,
+        }
+    }
+
+    /// [`Glance::of`] this body and `other`, seen from this one: the same numbers as
+    /// `Glance::of(this, other, ..)`, worked out in the same order (sums whose terms are
+    /// swapped are the same, addition being commutative).
+    #[inline(always)]
+    fn glance(&self, other: &Segment) -> Glance {
+        let d = other.position_at(self.t) - self.position;
+        let w = other.velocity - self.velocity;
+        let (reach, rest) = (self.radius + other.radius(), self.rest);
+        let magnitude = self.magnitude + other.position.abs().max_element();
+        Glance {
+            relative: Relative { d, w, reach, rest },
+            end_squared: (d + w * rest).length_squared(),
+            allowance: allowance_for(reach, magnitude, w, rest),
+        }
+    }
 }
 
 /// A pair of drifts seen from the first, from time `t` to the step's end.
@@ -1728,10 +1840,14 @@ impl Relative {
 /// where it is, so far from the origin the two differ by more than a billionth of their reach.
 #[inline(always)]
 fn end_allowance(si: &Segment, sj: &Segment, w: DVec3, reach: f64, rest: f64) -> f64 {
-    let magnitude = si.position.abs().max_element()
-        + sj.position.abs().max_element()
-        + w.abs().max_element() * rest;
-    reach * (1.0 + 1e-9) + 1e-12 * magnitude
+    let magnitudes = si.position.abs().max_element() + sj.position.abs().max_element();
+    allowance_for(reach, magnitudes, w, rest)
+}
+
+/// [`end_allowance`] from the sum of the two bodies' largest coordinates.
+#[inline(always)]
+fn allowance_for(reach: f64, magnitudes: f64, w: DVec3, rest: f64) -> f64 {
+    reach * (1.0 + 1e-9) + 1e-12 * (magnitudes + w.abs().max_element() * rest)
 }
 
 /// Whether fixed sphere `fixed`, grown by the contact margin, meets the box `other` sweeps

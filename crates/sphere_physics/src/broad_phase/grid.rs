@@ -13,8 +13,8 @@
 
 use glam::DVec3;
 
-use super::Aabb;
 use super::packed::{Frame, Packed, Query};
+use super::{Aabb, floor_i32};
 
 /// How many rows a query finds before scanning them: a grid body's box meets two or three
 /// cells per axis, so nine rows of three at most, unless the box is almost a cell wide (then
@@ -120,15 +120,6 @@ impl<'a> Kept<'a> {
 #[inline]
 fn corner_of(k: Cell) -> DVec3 {
     DVec3::new(f64::from(k[0]), f64::from(k[1]), f64::from(k[2]))
-}
-
-/// `floor(v)` as an integer, saturating far outside any scene.
-#[inline]
-fn floor_i32(v: f64) -> i32 {
-    // Truncate, then step down for negatives: `f64::floor` is a library call on baseline x86-64.
-    let v = v.clamp(-1.0e9, 1.0e9);
-    let t = v as i32;
-    t - i32::from(v < f64::from(t))
 }
 
 impl Grid {

@@ -15,7 +15,7 @@
 
 use glam::DVec3;
 
-use super::Aabb;
+use super::{Aabb, floor_i32};
 
 const NONE: u32 = u32::MAX;
 
@@ -51,14 +51,6 @@ struct CellKey {
     x: i32,
     y: i32,
     z: i32,
-}
-
-/// `floor(v)` as an integer, saturating far outside any scene.
-#[inline]
-fn floor_i32(v: f64) -> i32 {
-    let v = v.clamp(-1.0e9, 1.0e9);
-    let t = v as i32;
-    t - i32::from(v < f64::from(t))
 }
 
 /// The hierarchical grid (see the module docs). Keeps its buffers between steps.

@@ -48,6 +48,21 @@ impl Aabb {
     }
 }
 
+/// `floor(v)` as an integer, saturating far outside any scene (and 0 for a NaN).
+#[inline]
+fn floor_i32(v: f64) -> i32 {
+    // Truncate, then step down for negatives: `f64::floor` is a library call on baseline x86-64.
+    let v = v.clamp(-1.0e9, 1.0e9);
+    let t = if v.is_nan() {
+        0
+    } else {
+        // SAFETY: `v` is a number within ±1e9, well inside `i32`'s range. (`as` would check
+        // the range again, and saturate: a handful of instructions per coordinate.)
+        unsafe { v.to_int_unchecked::<i32>() }
+    };
+    t - i32::from(v < f64::from(t))
+}
+
 /// Below this many bodies, all pairs are tested directly.
 const SMALL_SCENE: usize = 24;
 

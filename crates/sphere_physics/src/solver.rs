@@ -154,7 +154,8 @@ impl Ord for Event {
     }
 }
 
-/// How many of the first pass's pairs are found before they are tested (see `Solver::step`).
+/// How many of the first pass's pairs (at least) are found before the batch before them is
+/// tested (see `Solver::step`).
 const PAIR_BATCH: usize = 16;
 
 /// How many times [`Settings::max_collisions_per_body`] one body may take in a step (the
@@ -184,6 +185,10 @@ pub(crate) struct Solver {
     broad: BroadPhase,
     candidates: Vec<u32>,
     partner_candidates: Vec<u32>,
+    /// The first pass's pairs: the batch being found, and the one before it (its segments
+    /// asked for), to be tested next.
+    pairs: Vec<(u32, u32)>,
+    asked_pairs: Vec<(u32, u32)>,
     /// A collision approaching no faster than this times the acceleration pressing the pair
     /// together is a resting contact (restitution 0); 0 when nothing accelerates.
     resting_scale: f64,
@@ -518,10 +523,8 @@ impl Solver {
         // Touching pairs that approach no faster than the resting speed are resting contacts,
         // solved together below; every other pair gets its time of impact.
         self.resting.clear();
-        // Pairs are tested in batches: the second body's segment is asked for as each pair is
-        // found, and read when the batch is full (rows of cells lie far apart in memory).
-        let mut batch = [(0u32, 0u32); PAIR_BATCH];
-        let mut found = 0;
+        // Pairs are tested in batches: a batch's second bodies' segments are asked for when it
+        // comes, and read when the next has come (rows of cells lie far apart in memory).
         let mut test_batch = |solver: &mut Self, batch: &[(u32, u32)]| {
             for &(i, j) in batch {
                 let (i, j) = (i as usize, j as usize);
@@ -537,16 +540,23 @@ impl Solver {
                 }
             }
         };
-        broad.pairs(&boxes, |i, j| {
-            prefetch(&self.segments[j]);
-            batch[found] = (i as u32, j as u32);
-            found += 1;
-            if found == PAIR_BATCH {
-                test_batch(self, &batch);
-                found = 0;
+        let (mut pairs, mut asked) = (
+            std::mem::take(&mut self.pairs),
+            std::mem::take(&mut self.asked_pairs),
+        );
+        pairs.clear();
+        asked.clear();
+        broad.pairs_batched(&boxes, &mut pairs, PAIR_BATCH, |batch| {
+            for &(_, j) in batch.iter() {
+                prefetch(&self.segments[j as usize]);
             }
+            test_batch(self, &asked);
+            asked.clear();
+            std::mem::swap(batch, &mut asked);
         });
-        test_batch(self, &batch[..found]);
+        test_batch(self, &asked);
+        test_batch(self, &pairs);
+        (self.pairs, self.asked_pairs) = (pairs, asked);
         (self.broad, self.boxes) = (broad, boxes);
         laps.lap(&mut self.profile.first_pass);
         if !self.resting.is_empty() {
@@ -1530,7 +1540,8 @@ impl Solver {
         self.scratch_boxes
             .extend(self.order.iter().map(|&i| self.boxes[i as usize]));
         self.broad.build(&self.scratch_boxes);
-        self.broad.pairs(&self.scratch_boxes, |i, j| {
+        let mut pairs = std::mem::take(&mut self.pairs);
+        self.broad.pairs(&self.scratch_boxes, &mut pairs, |i, j| {
             let (a, b) = (
                 &bodies[self.order[i] as usize],
                 &bodies[self.order[j] as usize],
@@ -1539,6 +1550,7 @@ impl Solver {
                 worst = worst.max(overlap(a, b));
             }
         });
+        self.pairs = pairs;
         worst
     }
 }

@@ -14,7 +14,7 @@
 use glam::DVec3;
 
 use super::packed::{Frame, Packed, Query};
-use super::{Aabb, floor_i32};
+use super::{Aabb, Pairs, floor_i32};
 
 /// How many rows a query finds before scanning them: a grid body's box meets two or three
 /// cells per axis, so nine rows of three at most, unless the box is almost a cell wide (then
@@ -32,9 +32,6 @@ const ONE_PASS_ROWS: usize = 9;
 /// The most bodies a row may hold for the one pass (a longer one, rare, sends the query to
 /// the row-by-row scan).
 const ONE_PASS_ROW: usize = 32;
-
-/// Partners [`Grid::pairs`] finds for a body before handing them over.
-const FOUND: usize = 64;
 
 /// A cell's coordinates, absolute (cell `k` spans `[k·cell, (k+1)·cell)` on its axis).
 pub(crate) type Cell = [i32; 3];
@@ -69,19 +66,19 @@ pub(crate) struct Grid {
 /// Indices appended to a list without filling its new slots first: each offered index is
 /// written past the list's end and kept by advancing past it only if wanted, with no branch on
 /// that (whether a box overlaps is a coin toss the branch predictor loses).
-struct Kept<'a> {
-    out: &'a mut Vec<u32>,
+struct Kept<'a, T> {
+    out: &'a mut Vec<T>,
     /// The first new slot.
-    slots: *mut u32,
+    slots: *mut T,
     kept: usize,
     /// How many offers there is room for.
     room: usize,
 }
 
-impl<'a> Kept<'a> {
+impl<'a, T> Kept<'a, T> {
     /// Room for `room` offers at the end of `out`.
     #[inline(always)]
-    fn new(out: &'a mut Vec<u32>, room: usize) -> Self {
+    fn new(out: &'a mut Vec<T>, room: usize) -> Self {
         out.reserve(room);
         // SAFETY: `out.len()` is within its allocation (one past its end at most).
         let slots = unsafe { out.as_mut_ptr().add(out.len()) };
@@ -98,7 +95,7 @@ impl<'a> Kept<'a> {
     /// # Safety
     /// At most `room` offers in all (as given to [`Kept::new`]).
     #[inline(always)]
-    unsafe fn offer(&mut self, j: u32, keep: bool) {
+    unsafe fn offer(&mut self, j: T, keep: bool) {
         debug_assert!(self.kept < self.room);
         // SAFETY: `kept` is at most the offers before this one, fewer than `room` (the
         // caller's promise): the slot lies within the capacity reserved.
@@ -216,11 +213,12 @@ impl Grid {
         false
     }
 
-    /// Calls `f(i, j)` with `i < j` for every pair of grid bodies whose boxes overlap, each
-    /// pair once: a cell with itself and its 13 neighbours that follow it, body by body (empty
-    /// cells cost nothing). Call right after [`Grid::layout`], with a block that has an empty
-    /// cell on every side of the bodies' cells.
-    pub fn pairs(&self, f: &mut impl FnMut(usize, usize)) {
+    /// Appends to `out` every pair `(i, j)` with `i < j` of grid bodies whose boxes overlap,
+    /// each pair once: a cell with itself and its 13 neighbours that follow it, body by body
+    /// (empty cells cost nothing). Before each body, hands `out` to `flush` if it holds at least
+    /// `batch` pairs (`flush` empties it). Call right after [`Grid::layout`], with a block that
+    /// has an empty cell on every side of the bodies' cells.
+    pub fn pairs(&self, out: &mut Pairs, batch: usize, flush: &mut impl FnMut(&mut Pairs)) {
         if self.len == 0 {
             // No body fits the grid: its block is a bare cell, with no rows around it.
             return;
@@ -231,16 +229,14 @@ impl Grid {
         // The forward rows of three cells (x − 1 ..= x + 1) at (y + 1, z), (y − 1, z + 1),
         // (y, z + 1) and (y + 1, z + 1), as offsets from the body's cell.
         let rows = [nx - 1, nx * ny - nx - 1, nx * ny - 1, nx * ny + nx - 1];
-        // A body's partners are found first, then handed over: finding them writes every
-        // candidate and keeps those that overlap, so no branch depends on an overlap (a coin
-        // toss the branch predictor loses).
-        let mut found = [0u32; FOUND];
         for i in 0..self.len {
+            if out.len() >= batch {
+                flush(out);
+            }
             let k = self.cells[i];
             let c = (k[0] - self.origin[0]) as usize
                 + nx * ((k[1] - self.origin[1]) as usize + ny * (k[2] - self.origin[2]) as usize);
             let bi = &boxes[i].as_query();
-            let mut kept = 0;
             // Own cell (after i) and the next along x: one range. Then four rows of three.
             debug_assert!(c + rows[3] + 3 < start.len());
             // SAFETY: the body's cell lies inside the block's empty border, so the cells read
@@ -254,32 +250,28 @@ impl Grid {
                 (at(rows[2]), at(rows[2] + 3)),
                 (at(rows[3]), at(rows[3] + 3)),
             ];
+            // Every candidate is written, and kept only if its box overlaps, so no branch
+            // depends on an overlap (a coin toss the branch predictor loses). A range takes
+            // whole blocks, at least one: fewer than its length plus a block in all.
+            let room =
+                ranges.iter().map(|&(from, to)| to - from).sum::<usize>() + ranges.len() * BLOCK;
+            let mut kept = Kept::new(out, room);
             for (from, to) in ranges {
-                if kept + (to - from) + BLOCK > FOUND {
-                    for &j in &found[..kept] {
-                        f(i, j as usize);
-                    }
-                    kept = 0;
-                    if (to - from) + BLOCK > FOUND {
-                        // A crowded row: one body at a time.
-                        pairs_in(bi, i, boxes, from, to, f);
-                        continue;
-                    }
-                }
-                // Whole blocks, at least one: a row of up to a block's bodies (the usual)
-                // takes one pass, with no branch on its length.
+                // A row of up to a block's bodies (the usual) takes one pass, with no branch on
+                // its length.
                 let mut j = from;
                 loop {
                     for b in 0..BLOCK {
                         let m = j + b;
-                        debug_assert!(kept < FOUND && m < boxes.len());
+                        debug_assert!(m < boxes.len());
                         // SAFETY: `m < to + BLOCK <= len + BLOCK`, the boxes' length with their
-                        // padding; and `kept < FOUND`: it started at most `FOUND - (to - from)
-                        // - BLOCK` (checked above) and has grown by at most one for each box
-                        // before this one in the row, fewer than `(to - from) + BLOCK`.
+                        // padding; and the offers, a block at a time while `j < to`, number
+                        // fewer than `room`.
                         unsafe {
-                            *found.get_unchecked_mut(kept) = m as u32;
-                            kept += usize::from((m < to) & boxes.get_unchecked(m).meets(bi));
+                            kept.offer(
+                                (i as u32, m as u32),
+                                (m < to) & boxes.get_unchecked(m).meets(bi),
+                            );
                         }
                     }
                     j += BLOCK;
@@ -288,9 +280,7 @@ impl Grid {
                     }
                 }
             }
-            for &j in &found[..kept] {
-                f(i, j as usize);
-            }
+            kept.finish();
         }
     }
 
@@ -545,22 +535,5 @@ impl Grid {
             total += len as usize;
         }
         Some(total)
-    }
-}
-
-/// Calls `f(i, j)` for every body `j` in `from..to` whose box overlaps `bi` (body `i`'s).
-#[inline]
-fn pairs_in(
-    bi: &Query,
-    i: usize,
-    boxes: &[Packed],
-    from: usize,
-    to: usize,
-    f: &mut impl FnMut(usize, usize),
-) {
-    for (offset, bj) in boxes[from..to].iter().enumerate() {
-        if bj.meets(bi) {
-            f(i, from + offset);
-        }
     }
 }

@@ -63,6 +63,9 @@ fn floor_i32(v: f64) -> i32 {
     t - i32::from(v < f64::from(t))
 }
 
+/// Pairs of bodies' indices, found in batches ([`BroadPhase::pairs_batched`]).
+pub(crate) type Pairs = Vec<(u32, u32)>;
+
 /// Below this many bodies, all pairs are tested directly.
 const SMALL_SCENE: usize = 24;
 
@@ -263,24 +266,53 @@ impl BroadPhase {
         self.hierarchy.update(i, b);
     }
 
-    /// Calls `f(i, j)` with `i < j` for every pair of overlapping boxes, each pair once.
+    /// Appends to `out` every pair `(i, j)` with `i < j` of overlapping boxes, each pair once,
+    /// handing `out` to `flush` whenever it holds at least `batch` pairs (`flush` empties it;
+    /// the pairs come in batches of about that size). The last pairs are left in `out`.
     /// Call right after [`BroadPhase::build`] with the same boxes.
-    pub fn pairs(&self, boxes: &[Aabb], mut f: impl FnMut(usize, usize)) {
+    pub fn pairs_batched(
+        &self,
+        boxes: &[Aabb],
+        out: &mut Pairs,
+        batch: usize,
+        mut flush: impl FnMut(&mut Pairs),
+    ) {
+        let push = |out: &mut Pairs, flush: &mut dyn FnMut(&mut Pairs), i, j| {
+            out.push((i as u32, j as u32));
+            if out.len() >= batch {
+                flush(out);
+            }
+        };
         if self.brute {
             for i in 0..boxes.len() {
                 for j in i + 1..boxes.len() {
                     if boxes[i].overlaps(&boxes[j]) {
-                        f(i, j);
+                        push(out, &mut flush, i, j);
                     }
                 }
             }
             return;
         }
-        self.grid.pairs(&mut f);
-        self.hierarchy.pairs(boxes, &mut f);
+        self.grid.pairs(out, batch, &mut flush);
+        self.hierarchy
+            .pairs(boxes, |i, j| push(out, &mut flush, i, j));
         for (j, bj) in boxes.iter().enumerate().skip(self.grid.len()) {
-            self.grid.visit(bj, &mut |i| f(i, j));
+            self.grid.visit(bj, &mut |i| push(out, &mut flush, i, j));
         }
+    }
+
+    /// Calls `f(i, j)` with `i < j` for every pair of overlapping boxes, each pair once, with
+    /// `scratch` for their batches ([`BroadPhase::pairs_batched`]).
+    pub fn pairs(&self, boxes: &[Aabb], scratch: &mut Pairs, mut f: impl FnMut(usize, usize)) {
+        let mut each = |pairs: &mut Pairs| {
+            for &(i, j) in pairs.iter() {
+                f(i as usize, j as usize);
+            }
+            pairs.clear();
+        };
+        scratch.clear();
+        self.pairs_batched(boxes, scratch, 64, &mut each);
+        each(scratch);
     }
 
     /// Hints that body `i` will be updated and queried soon.

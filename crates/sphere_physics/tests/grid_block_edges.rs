@@ -54,7 +54,7 @@ fn pairs_at_the_faces_edges_and_corners_of_the_grid_all_collide() {
     // down and the outermost pairs go to the hierarchy; 40: a sparse scene, mostly hierarchy.
     for side in [1.5, 2.2, 40.0] {
         let pairs = scene(side);
-        // Past the two dozen bodies below which the broad phase tests all pairs directly.
+        // Past the 64 bodies up to which the broad phase tests all pairs directly.
         assert_eq!(2 * pairs.len(), 84);
         let stats = step_head_on_pairs(&pairs, DT, &format!("side {side}"));
         assert!(

@@ -28,8 +28,8 @@ fn scene() -> impl Strategy<Value = Vec<(f64, f64, f64, f64, f64, f64, f64)>> {
             0.0..=1.0f64,
             -0.2..0.2f64,
         ),
-        // Past 24 bodies the broad phase's grid takes over from all pairs: both are covered.
-        2..120,
+        // Past 64 bodies the broad phase's grid takes over from all pairs: both are covered.
+        2..160,
     )
 }
 

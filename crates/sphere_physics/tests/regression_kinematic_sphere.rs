@@ -27,7 +27,7 @@ fn paddle_and_ball(extra: usize) -> World {
 
 #[test]
 fn regression_a_moving_fixed_sphere_hits_what_its_start_misses() {
-    for extra in [0, 40] {
+    for extra in [0, 80] {
         let mut world = paddle_and_ball(extra);
         let stats = *world.step(1.0 / 60.0).unwrap();
         assert_eq!(stats.collisions, 1, "with {extra} bystanders");

@@ -1,4 +1,4 @@
-//! Scenes big enough for the broad phase's grid (past 24 bodies), with huge fixed spheres on
+//! Scenes big enough for the broad phase's grid (past 64 bodies), with huge fixed spheres on
 //! levels of their own: nothing may be missed.
 
 use sphere_physics::SceneDesc;

@@ -29,8 +29,8 @@ fn the_struck_sphere_finds_the_next_one_in_the_same_step() {
     let mut world = World::new(Settings::default());
     // Enough spheres at rest close by (in a layer 0.5 m away) that the broad phase puts all
     // of them in its grid, rather than testing all pairs.
-    for i in 0..30 {
-        let (x, y) = (f64::from(i % 6), f64::from(i / 6));
+    for i in 0..72 {
+        let (x, y) = (f64::from(i % 9), f64::from(i / 9));
         world
             .add_sphere(SphereDesc::new(R).at(DVec3::new(0.15 * x, 0.15 * y, 0.5)))
             .unwrap();

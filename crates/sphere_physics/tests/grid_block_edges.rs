@@ -50,9 +50,9 @@ fn scene(side: f64) -> Vec<[SphereDesc; 2]> {
 
 #[test]
 fn pairs_at_the_faces_edges_and_corners_of_the_grid_all_collide() {
-    // 1.5: the block is every occupied cell; 2.2: over 16 cells per sphere, so the block is cut
+    // 1.5: the block is every occupied cell; 3.0: over 64 cells per sphere, so the block is cut
     // down and the outermost pairs go to the hierarchy; 40: a sparse scene, mostly hierarchy.
-    for side in [1.5, 2.2, 40.0] {
+    for side in [1.5, 3.0, 40.0] {
         let pairs = scene(side);
         // Past the 64 bodies up to which the broad phase tests all pairs directly.
         assert_eq!(2 * pairs.len(), 84);

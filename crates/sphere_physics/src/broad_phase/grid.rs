@@ -149,9 +149,12 @@ impl Grid {
         (b.lo.cmpge(lo) & b.hi.cmple(hi)).all()
     }
 
-    /// Where each cell's bodies start (dense index over the block; one more for the end).
-    pub fn set_start(&mut self, start: &[u32]) {
+    /// Where each cell's bodies start (dense index over the block; one more for the end), with
+    /// room for `room` entries (the largest block the scene may have: no allocation as it
+    /// grows).
+    pub fn set_start(&mut self, start: &[u32], room: usize) {
         self.start.clear();
+        self.start.reserve(room);
         self.start.extend_from_slice(start);
     }
 

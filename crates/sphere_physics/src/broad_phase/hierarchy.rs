@@ -160,9 +160,13 @@ impl Hierarchy {
         self.start.clear();
         self.start.reserve(most + 1);
         self.start.resize(buckets + 1, 0);
-        self.members.resize_with(LEVELS, Vec::new);
+        // The short lists at their longest from the start: a step that first fills one must
+        // not allocate.
+        self.members
+            .resize_with(LEVELS, || Vec::with_capacity(FEW + 1));
         self.members.iter_mut().for_each(Vec::clear);
         self.few.clear();
+        self.few.reserve(HELD_FEW);
         self.held = n - held;
         self.highest = 0;
         for (i, b) in boxes.iter().enumerate().skip(held) {

@@ -149,18 +149,16 @@ impl Grid {
         (b.lo.cmpge(lo) & b.hi.cmple(hi)).all()
     }
 
-    /// Where each cell's bodies start (dense index over the block; one more for the end), with
-    /// room for `room` entries (the largest block the scene may have: no allocation as it
-    /// grows).
-    pub fn set_start(&mut self, start: &[u32], room: usize) {
-        self.start.clear();
-        self.start.reserve(room);
-        self.start.extend_from_slice(start);
+    /// Takes `start` as where each cell's bodies start (dense index over the block; one more
+    /// for the end), leaving the grid's previous buffer in its place (to be refilled next
+    /// step) rather than copying.
+    pub fn swap_start(&mut self, start: &mut Vec<u32>) {
+        std::mem::swap(&mut self.start, start);
     }
 
     /// Lays the grid out over the block `origin`, `dims` for bodies `0..cells.len()`, already
     /// sorted by the dense index of their cells (`cells` are theirs, in that order) as
-    /// [`Grid::set_start`] says, with `boxes` (at least as many). Takes the cells' buffer
+    /// [`Grid::swap_start`] says, with `boxes` (at least as many). Takes the cells' buffer
     /// (leaving the grid's old one, to be refilled next step) rather than copying it.
     pub fn layout(
         &mut self,

@@ -140,36 +140,39 @@ impl BroadPhase {
         self.counts.resize(total + 1, 0);
         let mut in_grid = 0;
         for k in self.cells.iter().flatten() {
-            self.counts[index(*k) + 1] += 1;
+            self.counts[index(*k)] += 1;
             in_grid += 1;
         }
         // Running sums (a loop over the slice: indexing `self.counts` reloaded and
-        // bounds-checked it for each of the several cells per body).
+        // bounds-checked it for each of the several cells per body): each cell's end.
         let mut sum = 0;
         for count in &mut self.counts {
             sum += *count;
             *count = sum;
         }
-        self.grid.set_start(&self.counts, limit + 1);
+        // Bodies placed from the last, each cell's end stepping back: every cell's bodies in
+        // their order, and the counts end as the cells' starts (the last entry the grid
+        // bodies' end), handed to the grid without a copy.
         self.permutation.clear();
         self.permutation.resize(n, 0);
         self.sorted_cells.clear();
         self.sorted_cells.resize(in_grid, [0; 3]);
-        let mut rest = in_grid;
-        for (i, cell) in self.cells.iter().enumerate() {
+        let mut rest = n;
+        for (i, cell) in self.cells.iter().enumerate().rev() {
             match cell {
                 Some(k) => {
                     let slot = &mut self.counts[index(*k)];
+                    *slot -= 1;
                     self.permutation[*slot as usize] = i as u32;
                     self.sorted_cells[*slot as usize] = *k;
-                    *slot += 1;
                 }
                 None => {
+                    rest -= 1;
                     self.permutation[rest] = i as u32;
-                    rest += 1;
                 }
             }
         }
+        self.grid.swap_start(&mut self.counts);
         Some(&self.permutation)
     }
 

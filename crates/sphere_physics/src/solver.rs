@@ -186,8 +186,6 @@ pub(crate) struct Solver {
     /// Each segment's version (bumped when its drift changes; older events are stale). Apart
     /// from the segments so the event loop's checks read a small, dense array.
     versions: Vec<u32>,
-    /// Each segment's position at the end of the step, in solver order.
-    finals: Vec<DVec3>,
     boxes: Vec<Aabb>,
     queue: EventQueue<Event>,
     broad: BroadPhase,
@@ -684,8 +682,6 @@ impl Solver {
         }
         // Write back in body order (bodies and extras read in order, segments gathered),
         // summing the energies and momentum while each body is at hand.
-        self.finals.clear();
-        self.finals.resize(self.segments.len(), DVec3::ZERO);
         self.position_of.clear();
         self.position_of.resize(self.order.len(), 0);
         for (p, &i) in self.order.iter().enumerate() {
@@ -712,7 +708,6 @@ impl Solver {
             }
             body.desc.position = position;
             body.desc.velocity = velocity;
-            self.finals[p as usize] = position;
             if !body.is_fixed() {
                 let mass = body.mass();
                 kinetic += 0.5 * mass * velocity.length_squared();
@@ -734,7 +729,7 @@ impl Solver {
             .map(|&(i, j)| {
                 let (i, j) = (i as usize, j as usize);
                 let reach = self.segments[i].radius() + self.segments[j].radius();
-                reach - (self.finals[j] - self.finals[i]).length()
+                reach - (self.final_position(j, dt) - self.final_position(i, dt)).length()
             })
             .fold(0.0, f64::max);
         laps.lap(&mut self.profile.overlap);
@@ -1092,6 +1087,17 @@ impl Solver {
     /// Segment `k`'s [`Extra`].
     fn extra(&self, k: usize) -> &Extra {
         &self.extras[self.order[k] as usize]
+    }
+
+    /// Segment `k`'s position at the end of the step, `dt`, as the write-back gives its body
+    /// (worked out again rather than stored: a random write per body at 100k spheres).
+    fn final_position(&self, k: usize, dt: f64) -> DVec3 {
+        let position = self.segments[k].position_at(dt);
+        match self.strung(k) {
+            // The position `taut` gives does not depend on the velocity.
+            Some(string) => taut(position, DVec3::ZERO, string.tether).0,
+            None => position,
+        }
     }
 
     /// Segment `k`'s string state, if it hangs on a string.

@@ -311,3 +311,28 @@ fn regression_set_position_beyond_the_string_is_an_error() {
         "unchanged"
     );
 }
+
+/// A step's reported largest overlap is the overlap at the positions the step leaves its
+/// bodies in, strings pulled taut included: equal to the bit to the world's own check of every
+/// pair, step after step of swinging cradles whose balls overlap by a rounding error as they
+/// pass the swing on (so the overlap is worked out for most steps).
+#[test]
+fn the_reported_overlap_is_at_the_taut_positions() {
+    for name in ["newtons_cradle", "newtons_cradle_two"] {
+        let mut world = scene(name).build().unwrap();
+        let mut overlapping = 0;
+        for step in 0..600 {
+            let reported = world.step(DT).unwrap().max_overlap;
+            let actual = world.max_overlap();
+            assert!(
+                reported == actual,
+                "{name}, step {step}: reported {reported}, actual {actual}"
+            );
+            overlapping += usize::from(actual > 0.0);
+        }
+        assert!(
+            overlapping > 300,
+            "{name}: {overlapping} steps with an overlap"
+        );
+    }
+}

@@ -214,8 +214,9 @@ pub(crate) struct Solver {
     /// The pairs tested this step whose drifts could end the step overlapping (or that had an
     /// impact queued): a superset of the pairs that can overlap at its end.
     tested: Vec<(u32, u32)>,
-    touched_flags: Vec<u32>,
-    touched_epoch: u32,
+    /// One bit per segment, set while it is in `touched`: a bit set stays in the core's
+    /// caches at any size (a word per segment, marked with an epoch, missed them at 100k).
+    touched_bits: Vec<u64>,
     /// The first segment an impulse sent beyond the finite range within the step (a sphere
     /// struck by a kinematic one moving near the largest finite speed, say): the step stops
     /// and is refused before anything is written back.
@@ -900,29 +901,27 @@ impl Solver {
     }
 
     fn is_touched(&self, m: usize) -> bool {
-        match self.touched_flags.get(m) {
-            Some(flag) => *flag == self.touched_epoch,
+        match self.touched_bits.get(m / 64) {
+            Some(word) => word >> (m % 64) & 1 != 0,
             None => false,
         }
     }
 
     /// Starts a new set of touched bodies.
     fn clear_touched(&mut self) {
-        self.touched.clear();
-        self.touched_epoch = self.touched_epoch.wrapping_add(1);
-        if self.touched_epoch == 0 {
-            self.touched_flags.iter_mut().for_each(|f| *f = 0);
-            self.touched_epoch = 1;
+        for &k in &self.touched {
+            self.touched_bits[k as usize / 64] &= !(1 << (k % 64));
         }
-        if self.touched_flags.len() < self.segments.len() {
-            // 0: no epoch (epochs run from 1 to u32::MAX, then every flag is reset).
-            self.touched_flags.resize(self.segments.len(), 0);
+        self.touched.clear();
+        let words = self.segments.len().div_ceil(64);
+        if self.touched_bits.len() < words {
+            self.touched_bits.resize(words, 0);
         }
     }
 
     fn touch(&mut self, k: u32) {
         if !self.segments[k as usize].is_fixed() && !self.is_touched(k as usize) {
-            self.touched_flags[k as usize] = self.touched_epoch;
+            self.touched_bits[k as usize / 64] |= 1 << (k % 64);
             self.touched.push(k);
         }
     }

@@ -82,7 +82,7 @@ pub const MAX_BISECTION_ITERATIONS: u32 = 64;
 impl Settings {
     /// Checks every field (the fields are public, and settings also come from files): gravity
     /// finite, tolerance finite in `[0, 0.5)`, `resting_factor` finite and `>= 0`,
-    /// `creep_fraction` in `[0, 1]`, `substeps` at most [`MAX_SUBSTEPS`],
+    /// `creep_fraction` in `[0, 1]`, `substeps` from 1 to [`MAX_SUBSTEPS`],
     /// `max_collisions_per_body` from 1 to [`MAX_COLLISIONS_PER_BODY`], and bisection at most [`MAX_BISECTION_ITERATIONS`]
     /// iterations. [`World::step`] checks them first and changes nothing if one is wrong.
     pub fn validate(&self) -> Result<(), WorldError> {
@@ -111,6 +111,9 @@ impl Settings {
         if !(0.0..=1.0).contains(&self.creep_fraction) {
             let value = format!("{}", self.creep_fraction);
             return bad("creep_fraction", value, "must be in [0, 1]");
+        }
+        if self.substeps == 0 {
+            return bad("substeps", "0".into(), "must be at least 1");
         }
         if self.substeps > MAX_SUBSTEPS {
             let value = format!("{}", self.substeps);
@@ -201,6 +204,11 @@ pub struct World {
     time: f64,
     steps: u64,
     stats: StepStats,
+    /// The last step's collision records (the solver's buffer is swapped in when a step is
+    /// taken, so a refused step leaves these as they were).
+    collisions: Vec<Collision>,
+    /// The last step's phase timings (kept the same way).
+    profile: StepProfile,
     solver: Solver,
     /// Every body's position and velocity before a step of several substeps: a later
     /// substep that is refused puts them back (kept to reuse its buffer).
@@ -230,13 +238,13 @@ impl World {
     /// [`World::profile`].
     pub fn set_profiling(&mut self, on: bool) {
         self.solver.profiling = on;
-        self.solver.profile = StepProfile::default();
+        self.profile = StepProfile::default();
     }
 
     /// Wall time of the last step's phases, while profiling is on (see
     /// [`World::set_profiling`]); `None` when it is off.
     pub fn profile(&self) -> Option<&StepProfile> {
-        self.solver.profiling.then_some(&self.solver.profile)
+        self.solver.profiling.then_some(&self.profile)
     }
 
     /// Replaces the integrator chosen in the settings with a custom one.
@@ -364,7 +372,7 @@ impl World {
 
     /// The collisions resolved in the last step, in the order they were resolved (time order).
     pub fn collisions(&self) -> &[Collision] {
-        &self.solver.collisions
+        &self.collisions
     }
 
     /// Advances the world by `dt`. On an invalid `dt` (or one the settings' substeps would cut
@@ -372,7 +380,9 @@ impl World {
     /// changes. A sphere whose position or velocity would leave the finite range within the
     /// step (an absurd `dt` or speed, or the impulse of a kinematic sphere moving near the
     /// largest finite speed) is an error naming it; the step stops before the substep that
-    /// would overflow, so no state turns infinite or NaN.
+    /// would overflow, so no state turns infinite or NaN. A step refused for any of these
+    /// changes nothing: the bodies, the clock, [`World::stats`], [`World::collisions`] and
+    /// [`World::profile`] still tell of the last step taken.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
         if !(dt.is_normal() && dt > 0.0) {
             return Err(WorldError::InvalidTimeStep(dt));
@@ -382,7 +392,7 @@ impl World {
             dt,
             ..Default::default()
         };
-        let substeps = self.settings.substeps.max(1);
+        let substeps = self.settings.substeps;
         let sub_dt = dt / f64::from(substeps);
         if !sub_dt.is_normal() {
             // A subnormal substep overflows what is divided by it (a resting contact's
@@ -415,7 +425,6 @@ impl World {
                     body.desc.position = position;
                     body.desc.velocity = velocity;
                 }
-                self.solver.collisions.clear();
                 let body = &self.bodies[index];
                 return Err(WorldError::Body(BodyError {
                     body: label(body.desc.name.as_deref(), body.id),
@@ -428,6 +437,8 @@ impl World {
         }
         self.steps += 1;
         self.time += dt;
+        std::mem::swap(&mut self.collisions, &mut self.solver.collisions);
+        self.profile = self.solver.profile;
         // The solver summed the energies and momentum as it wrote the bodies back.
         stats.time = self.time;
         self.stats = stats;

@@ -50,3 +50,32 @@ fn regression_a_refused_step_leaves_no_collision_records() {
     assert!(world.step(1.0 / 60.0).is_err());
     assert!(world.collisions().is_empty(), "{:?}", world.collisions());
 }
+
+/// Regression: a refused step emptied `World::collisions` and reset `World::profile` while
+/// `World::stats` still told of the step before, so `stats().collisions` counted records that
+/// were gone. Now all three still tell of the last step taken. Found by review.
+#[test]
+fn regression_a_refused_step_keeps_the_last_steps_records_and_stats() {
+    let mut world = World::new(Settings::default());
+    world.set_profiling(true);
+    let a = world
+        .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
+        .unwrap();
+    world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(1.01, 0.0, 0.0)))
+        .unwrap();
+    world.step(1.0 / 60.0).unwrap();
+    let (stats, collisions, profile) = (
+        *world.stats(),
+        world.collisions().to_vec(),
+        *world.profile().unwrap(),
+    );
+    assert_eq!(collisions.len(), 1);
+    assert_eq!(stats.collisions, 1);
+    // Now a force no step can take: the first sphere would reach an infinite speed.
+    world.set_force(a, DVec3::new(f64::MAX, 0.0, 0.0)).unwrap();
+    assert!(matches!(world.step(1.0), Err(WorldError::Body(_))));
+    assert_eq!(*world.stats(), stats);
+    assert_eq!(world.collisions(), &collisions[..]);
+    assert_eq!(*world.profile().unwrap(), profile);
+}

@@ -1503,7 +1503,10 @@ impl Solver {
         };
         stats.toi_tests += 1;
         stats.toi_iterations += u64::from(outcome.iterations);
-        if let Some(toi) = outcome.time {
+        // An answer outside the rest of the step (NaN, negative, or past it: a custom method
+        // breaking its contract; the built-in ones never do) is no impact: queued, it would
+        // strike the pair wherever it is, in the past or at the step's end.
+        if let Some(toi) = outcome.time.filter(|toi| (0.0..=rest).contains(toi)) {
             if !(self.strings || ends_overlapping) {
                 self.tested.push((i as u32, j as u32));
             }

@@ -27,7 +27,8 @@ pub trait TimeOfImpact: Debug + Send + Sync {
     /// touches it while approaching, with `contact` the sum of the radii.
     ///
     /// A pair already touching (within `tol`) or overlapping at `t = 0` collides at 0 if it is
-    /// approaching, and not at all otherwise.
+    /// approaching, and not at all otherwise. An answer outside `[0, t_max]` (or NaN) is taken
+    /// as no impact.
     fn time_of_impact(
         &self,
         d: DVec3,

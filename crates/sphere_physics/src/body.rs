@@ -13,7 +13,10 @@ use glam::DVec3;
 pub struct BodyId(pub(crate) u64);
 
 impl BodyId {
-    /// The id as an index: bodies are numbered 0, 1, 2, ... in the order they were added.
+    /// The id as a number: bodies are numbered 0, 1, 2, ... in the order they were added, and
+    /// a removed body's number is never given again. Not an index into
+    /// [`World::bodies`](crate::World::bodies) once a body has been removed: look bodies up
+    /// with [`World::body`](crate::World::body).
     pub fn index(self) -> usize {
         self.0 as usize
     }
@@ -26,7 +29,8 @@ impl fmt::Display for BodyId {
 }
 
 /// Everything needed to add a sphere to a world. Build one with [`SphereDesc::new`] and the
-/// `with_*` methods; [`World::add_sphere`](crate::World::add_sphere) validates it.
+/// builder methods ([`SphereDesc::at`], [`SphereDesc::moving`], [`SphereDesc::with_density`],
+/// [`SphereDesc::fixed`], ...); [`World::add_sphere`](crate::World::add_sphere) validates it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SphereDesc {
     /// Optional name, used in error messages and by scene files.
@@ -165,7 +169,8 @@ impl SphereDesc {
                 "must be in [0, 1]",
             ));
         }
-        if let Some(tether) = self.tether {
+        // A fixed body ignores its tether (see `SphereDesc::tether`), so nothing to check.
+        if let Some(tether) = self.tether.filter(|_| !self.fixed) {
             if let Some(bad) = tether
                 .anchor
                 .to_array()
@@ -190,16 +195,27 @@ impl SphereDesc {
                 ));
             }
         }
-        // The mass `Body::new` will use, and its inverse: both must be finite and > 0.
-        let mass = mass_of(self.density, self.radius);
-        let inverse = 1.0 / mass;
-        let mass_ok = mass.is_finite() && mass > 0.0 && inverse.is_finite() && inverse > 0.0;
-        if !(self.fixed || mass_ok) {
-            return Err(err(
-                Field::Density,
-                self.density,
-                "gives a mass that is 0 or infinite",
-            ));
+        // The mass `Body::new` will use, and its inverse: both must be finite and > 0. The
+        // radius is to blame when its volume alone (at density 1) is out of range.
+        let mass_ok = |density| {
+            let mass = mass_of(density, self.radius);
+            let inverse = 1.0 / mass;
+            mass.is_finite() && mass > 0.0 && inverse.is_finite() && inverse > 0.0
+        };
+        if !(self.fixed || mass_ok(self.density)) {
+            return Err(if mass_ok(1.0) {
+                err(
+                    Field::Density,
+                    self.density,
+                    "gives a mass that is 0 or infinite",
+                )
+            } else {
+                err(
+                    Field::Radius,
+                    self.radius,
+                    "gives a volume, and so a mass, that is 0 or infinite",
+                )
+            });
         }
         Ok(())
     }
@@ -255,7 +271,9 @@ impl fmt::Display for Field {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("sphere {body}: {field} {reason}, got {value}")]
 pub struct BodyError {
-    /// The body's name in quotes if it has one, else its index as `#n`.
+    /// The body: `'name' (#id)` if it has a name, else `#id`, with its [`BodyId`] (for a sphere
+    /// being added, the id it would get: in a scene built into a new world, its index in the
+    /// scene's spheres).
     pub body: String,
     /// The body's id when it is in a world (a change to it, or a step it would overflow);
     /// `None` for a sphere being added.

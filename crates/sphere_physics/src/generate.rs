@@ -28,6 +28,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::SphereSpec;
 
+/// The most spheres a scene's generators may make, each and all together: ten million spheres
+/// take some 7 GB to step (the description, the world's bodies and the solver's records), and
+/// a larger count is far more likely a typo than a scene.
+pub const MAX_GENERATED: u32 = 10_000_000;
+
 fn one() -> f64 {
     1.0
 }
@@ -242,6 +247,12 @@ impl Checked {
         max: [f64; 3],
         radius: f64,
     ) -> Result<Lattice, GenerateError> {
+        if count > MAX_GENERATED {
+            return Err(self.err(
+                "count",
+                format!("must be at most {MAX_GENERATED}, got {count}"),
+            ));
+        }
         self.positive("radius", radius)?;
         self.finite("min", &min)?;
         self.finite("max", &max)?;
@@ -317,6 +328,37 @@ impl Generator {
             Generator::Shower { .. } => "Shower",
             Generator::Gas { .. } => "Gas",
         }
+    }
+
+    /// How many spheres the generator asks for: its `count`, and a gas's six walls.
+    pub fn len(&self) -> u64 {
+        match *self {
+            Generator::Shower { count, .. } => u64::from(count),
+            Generator::Gas { count, walls, .. } => u64::from(count) + if walls { 6 } else { 0 },
+        }
+    }
+
+    /// Whether the generator asks for no sphere at all.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The error for generator `index` when the scene's generators before it (`before`
+    /// spheres) and it would make more than [`MAX_GENERATED`] spheres in all.
+    pub(crate) fn over_limit(&self, index: usize, before: u64) -> Option<GenerateError> {
+        let total = before + self.len();
+        (total > u64::from(MAX_GENERATED)).then(|| {
+            Checked {
+                index,
+                kind: self.kind(),
+            }
+            .err(
+                "count",
+                format!(
+                    "brings the scene's generated spheres to {total}, more than {MAX_GENERATED}"
+                ),
+            )
+        })
     }
 
     /// The spheres this generator makes (the generator being the first in its scene).

@@ -135,6 +135,10 @@ pub const MAX_GROUP_SWEEPS: u32 = 256;
 /// contact gives the same answer as [`resolve`].
 ///
 /// `velocities` are updated in place; `impulses` receives each contact's total impulse.
+///
+/// # Panics
+/// If a contact names a body (`a` or `b`) beyond `inverse_masses` or `velocities`: the
+/// contacts index those two slices.
 pub fn resolve_simultaneous(
     inverse_masses: &[f64],
     velocities: &mut [DVec3],

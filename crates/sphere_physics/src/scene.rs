@@ -234,13 +234,32 @@ impl SceneDesc {
         Ok(settings)
     }
 
-    /// Every sphere of the scene: the listed ones, then each generator's, in order.
+    /// Every sphere of the scene: the listed ones, then each generator's, in order. The
+    /// generators may make at most [`MAX_GENERATED`](crate::generate::MAX_GENERATED) spheres
+    /// in all (the first to pass it is the error), checked before any is made.
     pub fn all_spheres(&self) -> Result<Vec<SphereSpec>, SceneError> {
+        let mut generated = 0;
+        for (index, generator) in self.generate.iter().enumerate() {
+            if let Some(error) = generator.over_limit(index, generated) {
+                return Err(error.into());
+            }
+            generated += generator.len();
+        }
         let mut all = self.spheres.clone();
         for (index, generator) in self.generate.iter().enumerate() {
             all.extend(generator.spheres_at(index)?);
         }
         Ok(all)
+    }
+
+    /// How many spheres the scene asks for: those listed and those its generators would make.
+    pub fn len(&self) -> u64 {
+        self.spheres.len() as u64 + self.generate.iter().map(Generator::len).sum::<u64>()
+    }
+
+    /// Whether the scene asks for no sphere at all.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
     }
 
     /// The description of every sphere (see [`SceneDesc::all_spheres`]), with the scene's
@@ -275,6 +294,6 @@ impl SceneDesc {
 
 impl fmt::Display for SceneDesc {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} ({} spheres)", self.name, self.spheres.len())
+        write!(f, "{} ({} spheres)", self.name, self.len())
     }
 }

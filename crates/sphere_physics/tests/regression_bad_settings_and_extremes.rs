@@ -78,14 +78,16 @@ fn regression_a_subnormal_time_step_is_refused() {
 #[test]
 fn regression_a_mass_that_overflows_is_refused() {
     let mut world = World::new(Settings::default());
-    for desc in [
-        SphereDesc::new(1.0).with_density(1e-309),
-        SphereDesc::new(1.0).with_density(1e308),
-        SphereDesc::new(1e-103),
-        SphereDesc::new(1e103),
+    // The field to blame: the density, or (found by review: a tiny sphere was said to have a
+    // bad density of 1) the radius when its volume alone is out of range.
+    for (desc, field) in [
+        (SphereDesc::new(1.0).with_density(1e-309), Field::Density),
+        (SphereDesc::new(1.0).with_density(1e308), Field::Density),
+        (SphereDesc::new(1e-103), Field::Radius),
+        (SphereDesc::new(1e103), Field::Radius),
     ] {
         let error = world.add_sphere(desc.clone()).unwrap_err();
-        assert_eq!(error.field, Field::Density, "{desc:?}");
+        assert_eq!(error.field, field, "{desc:?}");
     }
     assert!(world.is_empty());
     // Fixed spheres have no mass to overflow.
@@ -217,4 +219,44 @@ fn regression_an_impulse_beyond_the_finite_range_is_refused() {
         "{}",
         ball.velocity()
     );
+}
+
+/// Regression: `Settings::validate` let `substeps: 0` through (the step took it as 1) while a
+/// scene file with `substeps: 0` was refused. Found by review.
+#[test]
+fn regression_zero_substeps_are_refused_as_in_scene_files() {
+    let mut world = World::new(Settings {
+        substeps: 0,
+        ..Settings::default()
+    });
+    world.add_sphere(SphereDesc::new(1.0)).unwrap();
+    assert!(matches!(
+        world.step(1.0 / 60.0),
+        Err(WorldError::InvalidSetting {
+            field: "substeps",
+            ..
+        })
+    ));
+    assert_eq!(world.steps(), 0);
+}
+
+/// Regression: a fixed sphere's tether, which `SphereDesc::tether` says is ignored, was still
+/// checked, so a fixed sphere with a string too short for it was refused. Found by review.
+#[test]
+fn regression_a_fixed_spheres_tether_is_ignored() {
+    let mut world = World::new(Settings::with_gravity(DVec3::NEG_Y * 9.81));
+    let desc = SphereDesc::new(1.0)
+        .fixed()
+        .tethered(DVec3::ZERO, 1.0)
+        .at(DVec3::X * 5.0);
+    let id = world.add_sphere(desc).unwrap();
+    world.set_position(id, DVec3::X * 7.0).unwrap();
+    world.step(1.0 / 60.0).unwrap();
+    let body = world.body(id).unwrap();
+    assert_eq!((body.position(), body.tether()), (DVec3::X * 7.0, None));
+    // A dynamic sphere's tether is still checked.
+    let short = SphereDesc::new(1.0)
+        .tethered(DVec3::ZERO, 1.0)
+        .at(DVec3::X * 5.0);
+    assert_eq!(world.add_sphere(short).unwrap_err().field, Field::Tether);
 }

@@ -66,3 +66,56 @@ fn regression_a_generator_box_too_far_from_the_origin_is_refused() {
         }
     }
 }
+
+/// Regression: a generator's `count` was checked only against its box's capacity, so four
+/// billion spheres in a box large enough were generated until the process ran out of memory
+/// and aborted (a scene file could kill the lab at startup). Found by review.
+#[test]
+fn regression_a_huge_count_is_an_error_not_an_abort() {
+    let over = sphere_physics::generate::MAX_GENERATED + 1;
+    let huge = |count: u32, y: f64| {
+        format!(
+            "Shower(count: {count}, seed: 1, min: (-1000.0, {y:?}, -1000.0), \
+             max: (1000.0, {:?}, 1000.0), radius: 0.1)",
+            y + 2000.0
+        )
+    };
+    let scene =
+        |generators: &[String]| format!("(name: \"huge\", generate: [{}])", generators.join(", "));
+    assert_eq!(
+        generator_error(&scene(&[huge(4_000_000_000, 0.0)])),
+        (0, "Shower", "count")
+    );
+    assert_eq!(
+        generator_error(&scene(&[huge(over, 0.0)])),
+        (0, "Shower", "count")
+    );
+    // Each within the limit, together over it: the second is named, before either is made.
+    let half = sphere_physics::generate::MAX_GENERATED / 2 + 1;
+    assert_eq!(
+        generator_error(&scene(&[huge(half, 0.0), huge(half, 3000.0)])),
+        (1, "Shower", "count")
+    );
+    // The generator alone says so too.
+    let alone = SceneDesc::from_ron(&scene(&[huge(over, 0.0)])).unwrap();
+    let error = alone.generate[0].spheres().unwrap_err();
+    assert_eq!(error.field, "count", "{error}");
+    // The scene still says how many spheres it asks for, without making them.
+    assert_eq!(alone.len(), u64::from(over));
+    assert_eq!(alone.to_string(), format!("huge ({over} spheres)"));
+}
+
+/// Regression: a scene's `Display` counted only its listed spheres ("Gas in a box (0
+/// spheres)" for 1000 generated ones and six walls). Found by review.
+#[test]
+fn regression_a_scene_counts_its_generated_spheres() {
+    let scene = SceneDesc::from_ron(
+        "(name: \"gas\", spheres: [(position: (9.0, 0.0, 0.0), radius: 1.0)],
+          generate: [Gas(count: 20, seed: 1, min: (-1.0, -1.0, -1.0), max: (1.0, 1.0, 1.0),
+                         radius: 0.1, speed: 1.0)])",
+    )
+    .unwrap();
+    assert_eq!(scene.to_string(), "gas (27 spheres)");
+    assert_eq!(scene.len(), 27);
+    assert_eq!(scene.all_spheres().unwrap().len(), 27);
+}

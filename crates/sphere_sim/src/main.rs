@@ -32,9 +32,22 @@ fn io_failure(message: impl ToString) -> Failure {
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = cli::parse(&args)
-        .map_err(bad_input)
+    // `args()` would panic on an argument that is not UTF-8: bad input, said as such.
+    let args: Result<Vec<String>, Failure> = std::env::args_os()
+        .skip(1)
+        .enumerate()
+        .map(|(i, a)| {
+            a.into_string().map_err(|a| {
+                bad_input(format!(
+                    "argument {} is not valid UTF-8: {}",
+                    i + 1,
+                    a.to_string_lossy()
+                ))
+            })
+        })
+        .collect();
+    let result = args
+        .and_then(|args| cli::parse(&args).map_err(bad_input))
         .and_then(|command| match command {
             Command::Help => {
                 println!("{}", cli::USAGE);

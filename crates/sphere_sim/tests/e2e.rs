@@ -485,3 +485,22 @@ fn regression_a_refused_step_says_what_the_trace_holds() {
     assert_eq!(lines.len(), 2, "header and step 1: {text}");
     assert!(lines[1].starts_with("1,1.0,1.0,"), "{}", lines[1]);
 }
+
+/// Regression: an argument that is not UTF-8 (a legal file name on Linux) made the runner
+/// panic in `std::env::args` instead of saying so and exiting with code 2. Found by review.
+#[cfg(unix)]
+#[test]
+fn regression_an_argument_that_is_not_utf8_is_bad_input() {
+    use std::os::unix::ffi::OsStrExt;
+    let out = Command::new(env!("CARGO_BIN_EXE_sphere-sim"))
+        .arg("run")
+        .arg(std::ffi::OsStr::from_bytes(b"scene\xff.ron"))
+        .args(["--duration", "1"])
+        .output()
+        .expect("the binary runs");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("argument 2 is not valid UTF-8"), "{err}");
+}

@@ -195,14 +195,7 @@ fn open_start_scene(
         None => {
             // A scene by that name that failed to load (its file, or its settings) says why;
             // else list the ids there are.
-            let file = std::path::Path::new(id).with_extension("ron");
-            let failed = |e: &&String| {
-                e.starts_with(&format!("scene {id:?} left out"))
-                    || e.split(':').next().is_some_and(|path| {
-                        std::path::Path::new(path).file_name() == file.file_name()
-                    })
-            };
-            let error = match scenes.errors.iter().find(failed) {
+            let error = match scenes.failure(id) {
                 Some(failed) => format!("--scene {id:?}: {failed}"),
                 None => {
                     let known: Vec<&str> = scenes.iter().map(|s| s.id.as_str()).collect();

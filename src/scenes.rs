@@ -113,8 +113,11 @@ impl LabScene {
 #[derive(Resource, Clone, Debug, Default)]
 pub struct LabScenes {
     scenes: Vec<LabScene>,
-    /// Scene files that could not be loaded, with the reason (file, line and column).
+    /// Scenes and scene files left out, each with the reason (a file's path first, then the
+    /// line and column, the sphere or generator and its field, or the setting at fault).
     pub errors: Vec<String>,
+    /// The ids of the scenes left out, each with its entry in `errors`.
+    failed: Vec<(String, usize)>,
 }
 
 impl LabScenes {
@@ -147,6 +150,21 @@ impl LabScenes {
     pub fn at(&self, index: usize) -> Option<&LabScene> {
         self.scenes.get(index)
     }
+
+    /// Why the scene `id` (a scene file's stem, for a file) was left out, if it was.
+    pub fn failure(&self, id: &str) -> Option<&str> {
+        self.failed
+            .iter()
+            .find(|(failed, _)| failed == id)
+            .map(|&(_, at)| self.errors[at].as_str())
+    }
+
+    /// Lists scene `id` as left out, for `error`.
+    fn leave_out(&mut self, id: String, error: String) {
+        warn!("{error}");
+        self.failed.push((id, self.errors.len()));
+        self.errors.push(error);
+    }
 }
 
 /// The order of the systems that run when a scene is entered.
@@ -178,7 +196,9 @@ pub trait LabAppExt {
     ) -> &mut Self;
 
     /// Adds the scene file at `path` (a `sphere-sim` scene in RON) under the file's stem. A
-    /// file that cannot be read or parsed is listed in [`LabScenes::errors`] instead.
+    /// file that cannot be read or parsed, or whose settings, generators or spheres are
+    /// invalid (checked as `sphere-sim` checks them, by building its world), is listed in
+    /// [`LabScenes::errors`] instead, with its path.
     fn add_lab_scene_file(&mut self, path: impl AsRef<Path>) -> &mut Self;
 }
 
@@ -206,8 +226,7 @@ impl LabAppExt for App {
         };
         if let Some(problem) = problem {
             let error = format!("scene {:?} left out: {problem}", scene.id);
-            warn!("{error}");
-            scenes.errors.push(error);
+            scenes.leave_out(scene.id.clone(), error);
             return self;
         }
         scenes.scenes.push(scene.clone());
@@ -242,7 +261,10 @@ impl LabAppExt for App {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
         let loaded = SceneDesc::load(path).and_then(|desc| {
-            let scene = LabScene::from_desc(id, &desc)?;
+            let scene = LabScene::from_desc(id.clone(), &desc)?;
+            // Every sphere checked now, not one by one as each is spawned (and drawn where
+            // it was spawned, never simulated).
+            desc.build()?;
             desc.all_spheres().map(|spheres| (scene, spheres))
         });
         match loaded {
@@ -253,11 +275,14 @@ impl LabAppExt for App {
                 })
             }
             Err(e) => {
-                warn!("scene file left out: {e}");
+                // Reading and parsing errors name the file already.
+                let error = match e {
+                    SceneError::Io { .. } | SceneError::Parse { .. } => e.to_string(),
+                    _ => format!("{}: {e}", path.display()),
+                };
                 self.world_mut()
                     .get_resource_or_init::<LabScenes>()
-                    .errors
-                    .push(e.to_string());
+                    .leave_out(id, format!("scene file left out: {error}"));
                 self
             }
         }

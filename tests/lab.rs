@@ -681,3 +681,59 @@ fn a_restart_repeats_the_first_run_bit_for_bit() {
         assert_eq!(first, second, "{id}");
     }
 }
+
+/// Regression (found by review): a scene file with an invalid sphere was listed as fine, its
+/// sphere rejected only when spawned (and drawn where it was spawned, never simulated); a file
+/// with a bad setting was listed without its path; and `--scene` naming either said "no such
+/// scene" rather than why it was left out.
+#[test]
+fn regression_a_scene_file_with_a_bad_sphere_or_setting_is_left_out_with_its_path() {
+    let dir = temp_dir("bad_files");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad_sphere = dir.join("bad_sphere.ron");
+    std::fs::write(
+        &bad_sphere,
+        "(name: \"Bad sphere\", spheres: [(name: \"ok\", position: (0.0, 0.0, 0.0), radius: 1.0),
+                                          (name: \"flat\", position: (3.0, 0.0, 0.0), radius: -1.0)])",
+    )
+    .unwrap();
+    let bad_setting = dir.join("bad_setting.ron");
+    std::fs::write(
+        &bad_setting,
+        "(name: \"Bad setting\", restitution: 2.0,
+          spheres: [(position: (0.0, 0.0, 0.0), radius: 1.0)])",
+    )
+    .unwrap();
+    for (start, file, needle) in [
+        ("bad_sphere", &bad_sphere, "'flat'"),
+        ("bad_setting", &bad_setting, "restitution"),
+    ] {
+        let mut app = lab(LabPlugin {
+            scene_folder: None,
+            start: Some(start.into()),
+            ..default()
+        });
+        app.add_lab_scene_file(&bad_sphere)
+            .add_lab_scene_file(&bad_setting);
+        app.update();
+        let scenes = app.world().resource::<LabScenes>();
+        assert!(scenes.is_empty(), "both left out");
+        let failure = scenes.failure(start).expect("listed as left out");
+        assert!(
+            failure.contains(&file.display().to_string()) && failure.contains(needle),
+            "{failure}"
+        );
+        assert!(
+            scenes
+                .errors
+                .iter()
+                .any(|e| e.starts_with(&format!("--scene {start:?}"))
+                    && e.contains(needle)
+                    && !e.contains("no such scene")),
+            "{:?}",
+            scenes.errors
+        );
+        assert_eq!(state(&app), ActiveScene::None);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,5 +1,5 @@
 //! A camera that orbits a target: drag with the left mouse button (or the arrow keys while the
-//! chooser is closed) to orbit, scroll (or `+` / `-`) to zoom. Each scene is framed when it is
+//! chooser is closed) to orbit, scroll (or `-` / `=`, or the keypad's `-` / `+`) to zoom. Each scene is framed when it is
 //! entered.
 
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
@@ -116,7 +116,9 @@ fn orbit(
         let axis = |neg, pos| f32::from(keys.pressed(pos)) - f32::from(keys.pressed(neg));
         turn.x -= axis(KeyCode::ArrowLeft, KeyCode::ArrowRight) * rate;
         turn.y -= axis(KeyCode::ArrowDown, KeyCode::ArrowUp) * rate;
-        zoom += axis(KeyCode::Minus, KeyCode::Equal) * rate;
+        let keys_zoom = axis(KeyCode::Minus, KeyCode::Equal)
+            + axis(KeyCode::NumpadSubtract, KeyCode::NumpadAdd);
+        zoom += keys_zoom.clamp(-1.0, 1.0) * rate;
     }
     for (mut orbit, mut transform) in &mut cameras {
         if turn != Vec2::ZERO || zoom != 0.0 {

@@ -8,7 +8,9 @@ use bevy::prelude::*;
 use sphere_physics::BodyError;
 
 /// A sphere in the simulation. Spawning it with a [`Transform`] is enough: every other physics
-/// component is filled in with a default (at rest, density 1, restitution 1, no force).
+/// component is filled in with a default (at rest, density 1, no force), and without a
+/// [`Restitution`] it takes the plugin's ([`SpherePhysicsPlugin::restitution`](crate::SpherePhysicsPlugin::restitution),
+/// 1 unless set, or a [`ResetSpherePhysics`](crate::ResetSpherePhysics)'s).
 ///
 /// The sphere starts where its [`SpherePosition`] says if one is spawned with it, else at its
 /// `Transform`'s translation. Changing `radius` later re-validates the body; see the crate docs

@@ -5,8 +5,9 @@ use bevy::math::DVec3;
 use bevy::prelude::*;
 use sphere_physics::BodyError;
 
-/// One collision, written once per collision in [`SpherePhysicsSystems::Notify`](crate::SpherePhysicsSystems::Notify)
-/// (crate::SpherePhysicsSystems::Notify). Read it with `MessageReader<SphereCollision>`.
+/// One collision, written once per collision in
+/// [`SpherePhysicsSystems::Notify`](crate::SpherePhysicsSystems::Notify). Read it with
+/// `MessageReader<SphereCollision>`.
 #[derive(Message, Clone, Copy, Debug, PartialEq)]
 pub struct SphereCollision {
     /// The first sphere.

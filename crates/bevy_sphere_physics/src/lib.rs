@@ -61,7 +61,8 @@ pub mod prelude {
     pub use crate::events::{SphereCollision, SphereHit, SphereRejected};
     pub use crate::plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
     pub use crate::resources::{
-        ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics, SphereShownTime,
+        ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld,
+        SphereShownTime,
     };
     pub use bevy::math::DVec3;
 }

@@ -88,13 +88,15 @@ impl SpherePhysicsPlugin {
         self
     }
 
-    /// Sets the restitution of spheres spawned without a [`Restitution`] component.
+    /// Sets the restitution of spheres spawned without a [`Restitution`] component (1 by
+    /// default). Outside `[0, 1]` it is invalid for every such sphere: each is rejected, with a
+    /// [`SphereRejected`](crate::SphereRejected) naming its restitution.
     pub fn restitution(mut self, restitution: f64) -> Self {
         self.restitution = restitution;
         self
     }
 
-    /// Sets how many substeps each fixed step takes.
+    /// Sets how many substeps each fixed step takes (0 is taken as 1).
     pub fn substeps(mut self, substeps: u32) -> Self {
         self.settings.substeps = substeps.max(1);
         self

@@ -157,14 +157,15 @@ fn bisection_converges_to_exact_in_a_world() {
         }
         world.body(a).unwrap().velocity()
     };
+    // Bisection reports the impact up to dt/2^n late, so the velocity it leaves differs from
+    // the exact one by O(2^-n): measured 1.6e-4 to 2.3e-4 times 2^-n for these n (the bound
+    // has a margin of 2).
     let exact = run(ToiMethod::Exact);
-    let mut last = f64::INFINITY;
     for n in [2, 6, 12, 20] {
         let err = (run(ToiMethod::Bisection { max_iterations: n }) - exact).length();
-        assert!(err <= last, "n={n}: {err} > {last}");
-        last = err;
+        let bound = 5e-4 / f64::from(1u32 << n);
+        assert!(err <= bound, "n={n}: {err:e} > {bound:e}");
     }
-    assert!(last < 1e-4, "{last}");
 }
 
 #[test]

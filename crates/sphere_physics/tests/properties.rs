@@ -60,6 +60,33 @@ proptest! {
         }
     }
 
+    /// Elastic spheres with no gravity: every collision keeps the kinetic energy, so the
+    /// scene keeps it step after step (to rounding), whatever the step.
+    #[test]
+    fn elastic_scenes_keep_their_energy(spheres in scene(), dt in 0.005..0.2f64) {
+        let mut world = World::new(Settings::default());
+        for (i, &(vx, vy, vz, r, rho, _, jitter)) in spheres.iter().enumerate() {
+            let grid = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
+            world.add_sphere(
+                SphereDesc::new(r)
+                    .at(grid + DVec3::splat(jitter * 0.5))
+                    .moving(DVec3::new(vx, vy, vz))
+                    .with_density(rho)
+                    .with_restitution(1.0),
+            ).unwrap();
+        }
+        let energy = world.kinetic_energy();
+        let mut collisions = 0;
+        for step in 0..60 {
+            let stats = *world.step(dt).unwrap();
+            collisions += stats.collisions;
+            prop_assert!(
+                (stats.kinetic_energy - energy).abs() <= 1e-12 * energy * f64::from(collisions + 1),
+                "step {}: {} after {} collisions, from {}", step, stats.kinetic_energy, collisions, energy
+            );
+        }
+    }
+
     /// Many spheres raining onto a big fixed sphere under gravity: the grid keeps the big sphere
     /// on a level of its own; none may be missed, so overlap stays within the creep bound.
     #[test]
@@ -133,4 +160,38 @@ proptest! {
             prop_assert!(reported == actual, "step {step}: reported {reported}, actual {actual}");
         }
     }
+}
+
+/// The same check on a scene sure to overlap within the resting allowance (a column of five
+/// balls resting on a fixed dome, as in `regression_stack_on_dome`), so that the comparison is
+/// not of zeros only.
+#[test]
+fn the_step_reports_the_largest_overlap_of_a_resting_column() {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world
+        .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
+        .unwrap();
+    for k in 0..5 {
+        world
+            .add_sphere(
+                SphereDesc::new(0.1)
+                    .at(DVec3::new(2.0, k as f64, 1.0))
+                    .with_density(0.5)
+                    .with_restitution(0.0),
+            )
+            .unwrap();
+    }
+    let mut overlapping = 0;
+    for step in 0..300 {
+        let reported = world.step(0.0443324348313259).unwrap().max_overlap;
+        let actual = world.max_overlap();
+        assert!(
+            reported == actual,
+            "step {step}: reported {reported}, actual {actual}"
+        );
+        if actual > 0.0 {
+            overlapping += 1;
+        }
+    }
+    assert!(overlapping > 200, "{overlapping} of 300 steps overlapped");
 }

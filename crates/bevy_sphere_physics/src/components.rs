@@ -3,6 +3,8 @@
 //! Physics state is `f64`, as in the core ([`SpherePosition`], [`SphereVelocity`]); the
 //! plugin writes Bevy's `f32` [`Transform`] from it, interpolated between fixed steps.
 
+use bevy::ecs::lifecycle::HookContext;
+use bevy::ecs::world::DeferredWorld;
 use bevy::math::DVec3;
 use bevy::prelude::*;
 use sphere_physics::BodyError;
@@ -37,10 +39,28 @@ impl SphereBody {
 }
 
 /// Where the sphere's centre is in the physics world (`f64`). Written by the plugin every step;
-/// writing it from a game system teleports the sphere.
+/// writing it from a game system teleports the sphere. Inserting it (at spawn, say) also moves
+/// the entity's `Transform` there at once, so the sphere is drawn where it is before its first
+/// step (and where it was put if it is rejected).
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Deref, DerefMut)]
 #[reflect(Component)]
+#[component(on_insert = SpherePosition::show)]
 pub struct SpherePosition(pub DVec3);
+
+impl SpherePosition {
+    /// The insert hook: the `Transform`'s translation follows the inserted position.
+    fn show(mut world: DeferredWorld, context: HookContext) {
+        let Some(&SpherePosition(at)) = world.get::<SpherePosition>(context.entity) else {
+            return;
+        };
+        if let Some(mut transform) = world.get_mut::<Transform>(context.entity) {
+            let at = at.as_vec3();
+            if transform.translation != at {
+                transform.translation = at;
+            }
+        }
+    }
+}
 
 /// The physics position at the previous fixed step, for interpolation.
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Deref, DerefMut)]

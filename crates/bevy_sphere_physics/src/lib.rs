@@ -1,6 +1,7 @@
 //! Exact sphere physics for Bevy 0.19: [`sphere_physics`] as ordered
 //! [`FixedUpdate`](bevy::app::FixedUpdate) system
-//! sets ([`SpherePhysicsSystems`]).
+//! sets ([`SpherePhysicsSystems`]), then, once a frame after the fixed steps, the spheres'
+//! `Transform`s ([`SphereInterpolation`]).
 //!
 //! Add [`SpherePhysicsPlugin`] and spawn spheres with one line,
 //! `(SphereBody::new(0.5), Transform::from_xyz(0.0, 2.0, 0.0))`. Physics state is `f64`
@@ -48,7 +49,7 @@ mod systems;
 
 pub use components::*;
 pub use events::{SphereCollision, SphereHit, SphereRejected};
-pub use plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
+pub use plugin::{SphereInterpolation, SpherePhysicsPlugin, SpherePhysicsSystems};
 pub use resources::{
     ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld,
     SphereShownTime,
@@ -59,7 +60,7 @@ pub use sphere_physics;
 pub mod prelude {
     pub use crate::components::*;
     pub use crate::events::{SphereCollision, SphereHit, SphereRejected};
-    pub use crate::plugin::{SpherePhysicsPlugin, SpherePhysicsSystems};
+    pub use crate::plugin::{SphereInterpolation, SpherePhysicsPlugin, SpherePhysicsSystems};
     pub use crate::resources::{
         ResetSpherePhysics, SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld,
         SphereShownTime,

@@ -29,6 +29,14 @@ pub enum SpherePhysicsSystems {
     Notify,
 }
 
+/// The plugin's one system outside [`FixedUpdate`]: after the fixed steps of every frame (in
+/// [`RunFixedMainLoopSystems::AfterFixedMainLoop`]) it sets each sphere's `Transform` between
+/// its last two physics positions and updates [`SphereShownTime`]. A game system there that
+/// also writes `Transform`s or reads the spheres' (a camera following a sphere, say) goes
+/// `.after(SphereInterpolation)`.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SphereInterpolation;
+
 /// Sphere physics as ordered [`FixedUpdate`] system sets. Needs no window, renderer or egui:
 /// it runs with `MinimalPlugins`.
 ///
@@ -156,9 +164,13 @@ impl Plugin for SpherePhysicsPlugin {
                     systems::notify.in_set(SpherePhysicsSystems::Notify),
                 ),
             )
+            .configure_sets(
+                RunFixedMainLoop,
+                SphereInterpolation.in_set(RunFixedMainLoopSystems::AfterFixedMainLoop),
+            )
             .add_systems(
                 RunFixedMainLoop,
-                systems::interpolate.in_set(RunFixedMainLoopSystems::AfterFixedMainLoop),
+                systems::interpolate.in_set(SphereInterpolation),
             );
     }
 }

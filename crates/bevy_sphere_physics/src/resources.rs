@@ -10,7 +10,14 @@ use sphere_physics::{BodyId, StepStats, World};
 /// physics: the plugin only copies components in and results out.
 #[derive(Resource, Debug)]
 pub struct SpherePhysicsWorld {
-    /// The core world.
+    /// The core world: its settings, profiling, custom integrator or time-of-impact method,
+    /// queries (energy, momentum, the last step's collisions and statistics), and bodies a
+    /// game adds without an entity.
+    ///
+    /// A sphere entity's components are its source of truth: at every `Prepare` its
+    /// position, velocity, force, radius, density, restitution, fixedness and tether are set
+    /// from them, so a change made here to such a body (`set_velocity`, `set_position`, ...)
+    /// is undone. Change its components instead.
     pub world: World,
     pub(crate) bodies: EntityHashMap<BodyId>,
     /// Each body's entity (a map: body ids are never reused, so a table indexed by id would
@@ -107,7 +114,9 @@ pub struct SphereShownTime(pub f64);
 /// A command that empties the simulation and restarts its clock: the core world is replaced by
 /// a new one with `settings`, diagnostics start again from zero, and spheres still spawned
 /// join the new world at the next `Prepare`. Scene switches use it, so a new scene starts at
-/// simulated time 0 with its own gravity, method and integrator.
+/// simulated time 0 with its own gravity, method and integrator. Profiling
+/// ([`World::set_profiling`]) stays on if it was; a custom integrator or time-of-impact method
+/// set on the old world is dropped for the settings' own.
 ///
 /// ```
 /// # use bevy::prelude::*;
@@ -152,7 +161,14 @@ impl Command for ResetSpherePhysics {
         for entity in handles {
             world.entity_mut(entity).remove::<crate::SphereHandle>();
         }
-        world.insert_resource(SpherePhysicsWorld::new(World::new(self.settings)));
+        // Profiling stays as it was; a custom integrator or time-of-impact method does not
+        // (the settings' own are used).
+        let profiling = world
+            .get_resource::<SpherePhysicsWorld>()
+            .is_some_and(|physics| physics.world.profile().is_some());
+        let mut core = World::new(self.settings);
+        core.set_profiling(profiling);
+        world.insert_resource(SpherePhysicsWorld::new(core));
         if let Some(mut removed) = world.get_resource_mut::<crate::systems::RemovedSpheres>() {
             removed.0.clear();
         }

@@ -406,6 +406,10 @@ pub(crate) fn notify(
     }
 }
 
+/// The spheres whose `Transform`s the plugin writes: in the simulation and still spheres (one
+/// whose `SphereBody` was removed, its handle not yet, has its `Transform` back at once).
+type Shown = (With<SphereHandle>, With<SphereBody>);
+
 /// After the fixed steps of a frame: each sphere's `Transform` between its last two physics
 /// positions, by how far the fixed clock has run into the next step (and the simulated time
 /// that shows, in [`SphereShownTime`]).
@@ -422,7 +426,7 @@ pub(crate) fn interpolate(
             &mut Transform,
             Has<NoInterpolation>,
         ),
-        With<SphereHandle>,
+        Shown,
     >,
 ) {
     let fraction = time.overstep_fraction_f64();

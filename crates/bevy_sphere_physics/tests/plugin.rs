@@ -3,6 +3,7 @@
 
 use std::time::Duration;
 
+use bevy::app::{RunFixedMainLoop, RunFixedMainLoopSystems};
 use bevy::ecs::schedule::{LogLevel, ScheduleBuildSettings};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
@@ -73,6 +74,68 @@ fn sets_run_in_the_documented_order_without_ambiguities() {
     assert_eq!(
         app.world().resource::<Order>().0[..4],
         ["prepare", "step", "writeback", "notify"]
+    );
+}
+
+/// A game system that writes `Transform`s after the fixed steps (a camera following a sphere)
+/// can be ordered after the plugin's interpolation, with no ambiguity, and sees this frame's
+/// interpolated `Transform`s.
+#[test]
+fn a_game_system_orders_itself_after_the_interpolation() {
+    #[derive(Resource, Default)]
+    struct Followed(Vec<Vec3>);
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Followed>().add_systems(
+        RunFixedMainLoop,
+        (|mut spheres: Query<&mut Transform, With<SphereBody>>, mut followed: ResMut<Followed>| {
+            for transform in &mut spheres {
+                followed.0.push(transform.translation);
+            }
+        })
+        .in_set(RunFixedMainLoopSystems::AfterFixedMainLoop)
+        .after(SphereInterpolation),
+    );
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 3);
+    let shown = app.world().get::<Transform>(ball).unwrap().translation;
+    assert_eq!(app.world().resource::<Followed>().0.last(), Some(&shown));
+    assert!(shown.x > 0.0, "{shown}");
+}
+
+/// Regression (found by review): after a game removed `SphereBody` from an entity it kept, the
+/// plugin went on writing its `Transform` until the next fixed step, contrary to the docs.
+#[test]
+fn regression_a_removed_sphere_body_gives_the_transform_back_at_once() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 2);
+    app.world_mut().entity_mut(ball).remove::<SphereBody>();
+    let mine = Vec3::new(-7.0, 1.0, 2.0);
+    app.world_mut()
+        .get_mut::<Transform>(ball)
+        .unwrap()
+        .translation = mine;
+    // A frame with no fixed step (the fixed clock barely moves), then one with.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_micros(
+        10,
+    )));
+    app.update();
+    assert_eq!(
+        app.world().get::<Transform>(ball).unwrap().translation,
+        mine
+    );
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP));
+    app.update();
+    app.update();
+    assert_eq!(
+        app.world().get::<Transform>(ball).unwrap().translation,
+        mine
     );
 }
 
@@ -511,6 +574,66 @@ fn reset_restarts_time_and_settings_and_keeps_live_spheres() {
     assert_eq!(physics.world.time(), 4.0 / 64.0);
 }
 
+/// Regression (found by review): a reset (every scene switch of the lab) turned profiling off,
+/// so a game that had turned it on read no profiles after its first scene.
+#[test]
+fn regression_reset_keeps_profiling_on() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.world_mut()
+        .resource_mut::<SpherePhysicsWorld>()
+        .world
+        .set_profiling(true);
+    app.world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)));
+    app.world_mut()
+        .commands()
+        .queue(ResetSpherePhysics::new(sphere_physics::Settings::default()));
+    app.world_mut().flush();
+    run_steps(&mut app, 2);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert_eq!(physics.world.len(), 1);
+    assert!(
+        physics.world.profile().is_some(),
+        "profiling was turned off"
+    );
+    // And off stays off.
+    app.world_mut()
+        .resource_mut::<SpherePhysicsWorld>()
+        .world
+        .set_profiling(false);
+    app.world_mut()
+        .commands()
+        .queue(ResetSpherePhysics::new(sphere_physics::Settings::default()));
+    app.world_mut().flush();
+    run_steps(&mut app, 1);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert!(physics.world.profile().is_none());
+}
+
+/// Regression (found by review): a sphere spawned with only a `SpherePosition` was drawn at
+/// the origin (its required `Transform`'s default) until its first step, and for good if it
+/// was rejected; its `Transform` shows its position from the moment it is spawned.
+#[test]
+fn regression_a_sphere_spawned_by_its_position_is_shown_there_at_once() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let at = DVec3::new(1.0, 2.0, 3.0);
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SpherePosition(at)))
+        .id();
+    let rejected = app
+        .world_mut()
+        .spawn((SphereBody::new(-1.0), SpherePosition(-at)))
+        .id();
+    let shown = |app: &App, entity| app.world().get::<Transform>(entity).unwrap().translation;
+    assert_eq!(shown(&app, ball), at.as_vec3());
+    assert_eq!(shown(&app, rejected), (-at).as_vec3());
+    run_steps(&mut app, 2);
+    assert!(app.world().get::<RejectedSphere>(rejected).is_some());
+    assert_eq!(shown(&app, rejected), (-at).as_vec3());
+    assert_eq!(shown(&app, ball), at.as_vec3());
+}
+
 #[test]
 fn sphere_order_decides_body_ids_whatever_the_entities() {
     let mut app = app(SpherePhysicsPlugin::default());
@@ -706,13 +829,18 @@ fn regression_removing_sphere_velocity_keeps_the_motion() {
         "{}",
         body.velocity()
     );
-    assert!(position(&app, ball).y < 96.0);
-    // Its position component removed: put back, and the fall goes on.
+    // Semi-implicit Euler from rest at y = 100 with h = 1/64: y_n = 100 - g h² n(n + 1)/2.
+    let fallen = |n: f64| 100.0 - 9.81 * n * (n + 1.0) / 2.0 / 4096.0;
+    let y = position(&app, ball).y;
+    assert!((y - fallen(64.0)).abs() < 1e-9, "{y}");
+    // Its position component removed: put back, and the fall goes on unchanged.
     app.world_mut().entity_mut(ball).remove::<SpherePosition>();
     run_steps(&mut app, 2);
     let y = position(&app, ball).y;
+    assert!((y - fallen(66.0)).abs() < 1e-9, "{y}");
     run_steps(&mut app, 1);
-    assert!(position(&app, ball).y < y);
+    let y = position(&app, ball).y;
+    assert!((y - fallen(67.0)).abs() < 1e-9, "{y}");
 }
 
 /// Regression (found by review): a runaway body the game had added to the core directly (no

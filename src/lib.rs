@@ -34,7 +34,11 @@ pub use screenshot::{
 };
 
 /// The lab without a window: scene states and registry, keys and actions, screenshot saving.
-/// Adds `StatesPlugin`, `InputPlugin` and [`SpherePhysicsPlugin`] if the app has none yet.
+/// Adds `StatesPlugin`, `InputPlugin` and [`SpherePhysicsPlugin`] if the app has none yet: a
+/// game's own `SpherePhysicsPlugin` goes in before this one (after it, Bevy refuses it as
+/// added twice). Each scene then brings its own physics settings, gravity, method,
+/// integrator, default restitution and step (see [`LabScene`]), replacing the plugin's
+/// whenever a scene is entered.
 #[derive(Clone, Debug)]
 pub struct LabPlugin {
     /// The scene to open at start; `None` opens the chooser.
@@ -218,9 +222,14 @@ fn open_start_scene(
     }
 }
 
-/// The whole windowed lab: Bevy's default plugins (window titled "Sphere lab"), egui, the
-/// renderer, the chooser and panel, and [`LabPlugin`] configured from the command line (see
-/// [`LabPlugin::with_args`]). `start` opens straight into that scene; `--scene` overrides it.
+/// The whole windowed lab for a program's `main`: [`lab_window_app`] with [`LabPlugin`]
+/// configured from the process's command line (see [`LabPlugin::with_args`]). `start` opens
+/// straight into that scene; `--scene` overrides it.
+///
+/// # Exits
+/// On an argument it does not know (or one that is not UTF-8) it prints the error and ends
+/// the process with exit code 2: meant for `main` and the examples. A game or test with its
+/// own command line builds its [`LabPlugin`] and calls [`lab_window_app`].
 #[cfg(feature = "render")]
 pub fn lab_app(start: Option<&str>) -> App {
     let lab = LabPlugin {
@@ -234,13 +243,19 @@ pub fn lab_app(start: Option<&str>) -> App {
                 .map_err(|a| format!("argument {a:?} is not UTF-8"))
         })
         .collect();
-    let lab = match args.and_then(|args| lab.with_args(args)) {
-        Ok(lab) => lab,
+    match args.and_then(|args| lab.with_args(args)) {
+        Ok(lab) => lab_window_app(lab),
         Err(e) => {
             eprintln!("{e}");
             std::process::exit(2);
         }
-    };
+    }
+}
+
+/// The whole windowed lab: Bevy's default plugins (window titled "Sphere lab"), egui, the
+/// renderer, the chooser and panel, and `lab`. Reads no command line.
+#[cfg(feature = "render")]
+pub fn lab_window_app(lab: LabPlugin) -> App {
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
         primary_window: Some(Window {

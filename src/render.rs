@@ -370,12 +370,21 @@ fn capture_frames(mut commands: Commands, mut requests: MessageReader<Screenshot
 }
 
 /// Holds Bevy's virtual clock (so the physics) while shaders compile: a scene starts moving
-/// when it can be seen, not seconds earlier on a slow (or software) renderer.
-fn hold_until_drawn(ready: Res<RenderReady>, mut time: ResMut<Time<Virtual>>) {
+/// when it can be seen, not seconds earlier on a slow (or software) renderer. It only ever
+/// undoes its own hold: a clock the game paused stays paused.
+fn hold_until_drawn(
+    ready: Res<RenderReady>,
+    mut time: ResMut<Time<Virtual>>,
+    mut holding: Local<bool>,
+) {
     let drawing = ready.frames >= 2;
-    if drawing && time.is_paused() {
-        time.unpause();
-    } else if !drawing && !time.is_paused() {
+    if drawing && *holding {
+        *holding = false;
+        if time.is_paused() {
+            time.unpause();
+        }
+    } else if !drawing && !*holding && !time.is_paused() {
+        *holding = true;
         time.pause();
     }
 }

@@ -52,7 +52,9 @@ pub struct LabScene {
     pub settings: Settings,
     /// Restitution of spheres that do not set their own.
     pub restitution: f64,
-    /// The fixed step, in seconds.
+    /// The fixed step, in seconds. Bevy's fixed clock counts whole nanoseconds, so the step
+    /// the lab runs is this rounded to a nanosecond (1/60 s runs as 0.016666667 s); the
+    /// physics integrates over the step it runs.
     pub dt: f64,
 }
 
@@ -116,8 +118,8 @@ pub struct LabScenes {
     /// Scenes and scene files left out, each with the reason (a file's path first, then the
     /// line and column, the sphere or generator and its field, or the setting at fault).
     pub errors: Vec<String>,
-    /// The ids of the scenes left out, each with its entry in `errors`.
-    failed: Vec<(String, usize)>,
+    /// The ids of the scenes left out, each with its reason (as listed in `errors`).
+    failed: Vec<(String, String)>,
 }
 
 impl LabScenes {
@@ -156,14 +158,14 @@ impl LabScenes {
         self.failed
             .iter()
             .find(|(failed, _)| failed == id)
-            .map(|&(_, at)| self.errors[at].as_str())
+            .map(|(_, error)| error.as_str())
     }
 
     /// Lists scene `id` as left out, for `error`.
     fn leave_out(&mut self, id: String, error: String) {
         warn!("{error}");
-        self.failed.push((id, self.errors.len()));
-        self.errors.push(error);
+        self.errors.push(error.clone());
+        self.failed.push((id, error));
     }
 }
 
@@ -222,7 +224,8 @@ impl LabAppExt for App {
                 scene.restitution
             ))
         } else {
-            None
+            // Settings the core would refuse at every step (the scene would stand still).
+            scene.settings.validate().err().map(|e| e.to_string())
         };
         if let Some(problem) = problem {
             let error = format!("scene {:?} left out: {problem}", scene.id);

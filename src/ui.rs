@@ -181,7 +181,7 @@ fn panel(
                 }
                 None => {}
             }
-            ui.weak("drag to orbit, scroll to zoom");
+            ui.weak("orbit: drag or arrows · zoom: wheel or -/=");
         });
     Ok(())
 }

@@ -737,3 +737,29 @@ fn regression_a_scene_file_with_a_bad_sphere_or_setting_is_left_out_with_its_pat
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Regression (found by review): a scene built in code with settings the core refuses (no
+/// substeps, say) was listed, then stood still with a refused step every frame; and
+/// `LabScenes::failure` indexed `errors`, which a game may clear, so it could panic.
+#[test]
+fn regression_a_code_scene_with_bad_settings_is_left_out() {
+    let mut app = lab(LabPlugin {
+        scene_folder: None,
+        ..default()
+    });
+    let mut scene = LabScene::new("stuck", "Stuck", "no substeps");
+    scene.settings.substeps = 0;
+    app.add_lab_scene(scene, || {});
+    app.update();
+    let scenes = app.world().resource::<LabScenes>();
+    assert!(scenes.is_empty());
+    let failure = scenes.failure("stuck").expect("listed as left out");
+    assert!(failure.contains("substeps"), "{failure}");
+    app.world_mut().resource_mut::<LabScenes>().errors.clear();
+    let scenes = app.world().resource::<LabScenes>();
+    assert!(
+        scenes
+            .failure("stuck")
+            .is_some_and(|f| f.contains("substeps"))
+    );
+}

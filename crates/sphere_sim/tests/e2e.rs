@@ -123,7 +123,8 @@ fn two_body_collision_matches_the_analytic_answer() {
     let ke = stats["kinetic_energy"].as_f64().unwrap();
     assert!((ke - 2.0 * m).abs() <= 1e-13, "kinetic energy {ke}");
     assert_eq!(stats["max_overlap"], 0.0);
-    assert!(stats["wall_seconds"].as_f64().unwrap() >= 0.0);
+    // The wall-clock time is reported, a number (its value is the machine's).
+    assert!(stats["wall_seconds"].as_f64().is_some_and(f64::is_finite));
 }
 
 #[test]

@@ -5,6 +5,11 @@ use std::fmt;
 
 use glam::DVec3;
 
+/// The largest radius a sphere may have, 1e150 m: the squared distances the collision tests
+/// use would overflow an f64 for larger spheres (and a sphere that large resolves nothing
+/// smaller than some 1e134 m on its surface anyway).
+pub const MAX_RADIUS: f64 = 1e150;
+
 /// Stable identifier of a body in a [`World`](crate::World). Ids are never reused (64 bits: a
 /// world adding a million spheres a second runs out after half a million years). Ties between
 /// simultaneous events are broken by a deterministic order (ids in small scenes, the broad
@@ -158,6 +163,13 @@ impl SphereDesc {
         }
         if !(self.radius.is_finite() && self.radius > 0.0) {
             return Err(err(Field::Radius, self.radius, "must be finite and > 0"));
+        }
+        if self.radius > MAX_RADIUS {
+            return Err(err(
+                Field::Radius,
+                self.radius,
+                "must be at most 1e150 (squared distances to the sphere would overflow)",
+            ));
         }
         if !(self.density.is_finite() && self.density > 0.0) {
             return Err(err(Field::Density, self.density, "must be finite and > 0"));

@@ -442,6 +442,20 @@ impl Generator {
                     .collect();
                 if walls {
                     check.positive("wall_radius", wall_radius)?;
+                    // The walls' centres lie `wall_radius` beyond the box: there too an f64
+                    // must resolve a millionth of the gas's radius.
+                    let far =
+                        min.iter().chain(&max).fold(0.0f64, |m, v| m.max(v.abs())) + wall_radius;
+                    if far * f64::EPSILON > 1e-6 * radius {
+                        return Err(check.err(
+                            "wall_radius",
+                            format!(
+                                "is too large for spheres of radius {radius}: the walls' centres, \
+                                 {far:e} from the origin, are resolved only to {:e}",
+                                far * f64::EPSILON
+                            ),
+                        ));
+                    }
                     let centre: [f64; 3] = std::array::from_fn(|k| 0.5 * (min[k] + max[k]));
                     for axis in 0..3 {
                         for (side, face) in [("min", min[axis]), ("max", max[axis])] {

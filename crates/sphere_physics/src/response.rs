@@ -16,7 +16,8 @@ pub struct Resolution {
 
 /// Resolves a collision between `a` and `b` with an impulse along `normal` (unit, from `a` to
 /// `b`). Inverse masses of 0 mean fixed bodies. Momentum is conserved, kinetic energy too when
-/// `restitution` is 1; a pair that is not approaching is left unchanged.
+/// `restitution` is 1; a pair that is not approaching is left unchanged. `restitution` is taken
+/// within `[0, 1]` (above 1 as 1, below 0 or NaN as 0), so energy is never gained.
 pub fn resolve(
     inverse_mass_a: f64,
     inverse_mass_b: f64,
@@ -34,6 +35,11 @@ pub fn resolve(
             impulse: 0.0,
         };
     }
+    let restitution = if restitution >= 0.0 {
+        restitution.min(1.0)
+    } else {
+        0.0
+    };
     let impulse = -(1.0 + restitution) * normal_speed / inverse_sum;
     Resolution {
         velocity_a: velocity_a - normal * (impulse * inverse_mass_a),
@@ -79,7 +85,8 @@ pub struct GroupContact {
     pub normal: DVec3,
     /// The contact's restitution.
     pub restitution: f64,
-    /// The separating speed the compression impulse aims for, `>= 0`: 0 for a plain contact
+    /// The separating speed the compression impulse aims for, `>= 0` (a negative or non-finite
+    /// one counts as 0): 0 for a plain contact
     /// (just stop approaching); a resting pair that overlaps too deeply is given enough to
     /// undo the excess over a step. The restitution impulse, `restitution` times the whole
     /// compression impulse, comes on top of it (so scales the bias's share too; the engine
@@ -105,14 +112,20 @@ impl GroupContact {
         }
     }
 
-    /// The same contact, asked to separate at `bias` (see [`GroupContact::bias`]; a negative
-    /// one would let the pair approach, and is a caller's error).
+    /// The same contact, asked to separate at `bias` (see [`GroupContact::bias`]; one that is
+    /// negative or not finite counts as 0).
     pub fn with_bias(self, bias: f64) -> Self {
-        debug_assert!(
-            bias >= 0.0,
-            "a contact's bias is a separating speed: {bias}"
-        );
         GroupContact { bias, ..self }
+    }
+
+    /// The bias [`resolve_simultaneous`] aims for: `bias`, or 0 if it is negative or not finite
+    /// (a negative one would let the pair approach, an infinite one push it apart without end).
+    fn aimed_bias(&self) -> f64 {
+        if self.bias > 0.0 && self.bias.is_finite() {
+            self.bias
+        } else {
+            0.0
+        }
     }
 }
 
@@ -155,7 +168,7 @@ pub fn resolve_simultaneous(
         .iter()
         .map(|c| {
             let speed = (velocities[c.b] - velocities[c.a]).dot(c.normal).abs();
-            speed.max(c.bias)
+            speed.max(c.aimed_bias())
         })
         .fold(0.0f64, f64::max);
     if let Some(exact) = compress_exactly(inverse_masses, velocities, contacts, scale) {
@@ -235,7 +248,7 @@ fn compress_exactly(
         }
     };
     for (i, ci) in contacts.iter().enumerate() {
-        b[i] = (velocities[ci.b] - velocities[ci.a]).dot(ci.normal) - ci.bias;
+        b[i] = (velocities[ci.b] - velocities[ci.a]).dot(ci.normal) - ci.aimed_bias();
         for (j, cj) in contacts.iter().enumerate() {
             let coupling: f64 = [cj.a, cj.b]
                 .into_iter()
@@ -346,7 +359,7 @@ fn compress_iteratively(
             if inverse_sum == 0.0 {
                 continue;
             }
-            let normal_speed = (velocities[c.b] - velocities[c.a]).dot(c.normal) - c.bias;
+            let normal_speed = (velocities[c.b] - velocities[c.a]).dot(c.normal) - c.aimed_bias();
             let next = (*impulse - normal_speed / inverse_sum).max(0.0);
             let change = next - *impulse;
             if change != 0.0 {

@@ -57,7 +57,9 @@ fn at_start(d: DVec3, w: DVec3, contact: f64, tol: Tolerance) -> Option<ToiOutco
 /// Written for precision: the discriminant is computed as `|w|^2 R^2 - |d x w|^2` (no
 /// cancellation between large terms for fast or distant pairs) and the root as
 /// `c / (-b + sqrt(disc))` with `c = (|d| - R)(|d| + R)` (no cancellation for grazing or nearly
-/// touching pairs). Nothing can tunnel, whatever the speeds or the step length.
+/// touching pairs). Nothing can tunnel, whatever the speeds or the step length, as long as
+/// the squares stay within an f64: distances, radii and each step's travel below about 1e150 m
+/// (radii are held to [`MAX_RADIUS`](crate::MAX_RADIUS)).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExactToi;
 
@@ -105,7 +107,8 @@ impl TimeOfImpact for ExactToi {
 /// `t_max / 2^max_iterations`, leaving the pair overlapping when it is resolved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Bisection {
-    /// Number of bisection steps.
+    /// Number of bisection steps, at most [`MAX_BISECTION_ITERATIONS`](crate::MAX_BISECTION_ITERATIONS)
+    /// (more are taken as that many: by then the interval is below an f64's resolution).
     pub max_iterations: u32,
 }
 
@@ -135,7 +138,8 @@ impl TimeOfImpact for Bisection {
             };
         }
         let (mut lo, mut hi) = (0.0, t_max);
-        for _ in 0..self.max_iterations {
+        let iterations = self.max_iterations.min(crate::MAX_BISECTION_ITERATIONS);
+        for _ in 0..iterations {
             let mid = 0.5 * (lo + hi);
             if touching_at(mid) {
                 hi = mid;
@@ -145,7 +149,7 @@ impl TimeOfImpact for Bisection {
         }
         ToiOutcome {
             time: Some(hi),
-            iterations: self.max_iterations,
+            iterations,
         }
     }
 }

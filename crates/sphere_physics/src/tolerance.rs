@@ -17,9 +17,12 @@ impl Tolerance {
     /// The default: `1e-9`.
     pub const DEFAULT: Tolerance = Tolerance { epsilon: 1e-9 };
 
-    /// A tolerance of `epsilon`; `None` unless `epsilon` is finite and `>= 0`.
+    /// A tolerance of `epsilon`; `None` unless `epsilon` is in `[0, 0.5)`, the range
+    /// [`Settings::validate`](crate::Settings::validate) accepts.
     pub fn new(epsilon: f64) -> Option<Self> {
-        (epsilon.is_finite() && epsilon >= 0.0).then_some(Tolerance { epsilon })
+        (0.0..0.5)
+            .contains(&epsilon)
+            .then_some(Tolerance { epsilon })
     }
 
     /// The epsilon this tolerance was made with.

@@ -30,7 +30,8 @@ pub struct Settings {
     /// gravity plus applied force over mass, along their line of centres) is a resting contact
     /// and is resolved with restitution 0: a ball at rest on another, or in a pile, stays at
     /// rest instead of jittering, and a bouncing ball comes to rest instead of bouncing ever
-    /// lower forever. A ball on a floor under Earth gravity at 60 Hz: 0.25 m/s. Balls side by
+    /// lower forever. A ball on a floor under Earth gravity at 60 Hz: 0.25 m/s (the step here is
+    /// each substep's: with 4 substeps, 0.06 m/s). Balls side by
     /// side under gravity (a cradle) do not press, so they never rest on each other. Default
     /// 1.5; 0 disables it.
     pub resting_factor: f64,
@@ -39,14 +40,15 @@ pub struct Settings {
     /// resting solve, instead of being resolved one contact at a time: in a pile that would take
     /// thousands of ever smaller collisions. The overlap this allows is at most
     /// `creep_fraction · resting_factor · acceleration · dt²` (4e-5 m at 60 Hz under Earth
-    /// gravity) beyond the band within which spheres count as touching (a millionth of their
+    /// gravity; `dt` is each substep's) beyond the band within which spheres count as touching (a millionth of their
     /// radii); at the bottom of a pile, pressed by the spheres above harder than by its own
     /// weight, a few times that (2.1 times in the README's example pile of 2000), undone over
     /// the next steps. Default 0.01; 0 disables it. Without gravity or forces it never applies.
     pub creep_fraction: f64,
     /// Each [`World::step`] is taken as this many equal substeps (default 1). Integration error
     /// that grows with the step, such as a tethered pendulum's energy error at each impact
-    /// (which falls as dt²), falls as `1/substeps²` at `substeps` times the cost.
+    /// (which falls as dt²), falls as `1/substeps²` at `substeps` times the cost. The resting
+    /// speed and the creep distance (`resting_factor`, `creep_fraction`) are each substep's.
     pub substeps: u32,
     /// The step's collision budget is this times the number of dynamic bodies, and no body takes
     /// more than 16 times this in one step (so that a sphere caught between fixed ones, which
@@ -467,7 +469,9 @@ impl World {
         self.bodies.iter().map(Body::momentum).sum()
     }
 
-    /// Largest overlap between two bodies, at least one of them dynamic (0 if none).
+    /// Largest overlap between two bodies, at least one of them dynamic (0 if none). It takes
+    /// `&mut self` to reuse the step's broad-phase buffers (no allocation once warmed up); the
+    /// last step's answer is also in [`StepStats::max_overlap`], through `&self`.
     pub fn max_overlap(&mut self) -> f64 {
         self.solver.max_overlap(&self.bodies)
     }

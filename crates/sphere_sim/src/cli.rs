@@ -141,8 +141,18 @@ pub fn parse(args: &[String]) -> Result<Command, UsageError> {
     let mut args = args.iter().map(String::as_str);
     match args.next() {
         None => Err(usage("no command given")),
-        Some("help" | "--help" | "-h") => Ok(Command::Help),
-        Some("--version" | "-V") => Ok(Command::Version),
+        Some(command @ ("help" | "--help" | "-h" | "--version" | "-V")) => {
+            if let Some(extra) = args.next() {
+                return Err(usage(format!(
+                    "unexpected argument '{extra}' after '{command}'"
+                )));
+            }
+            Ok(if command.starts_with("--v") || command == "-V" {
+                Command::Version
+            } else {
+                Command::Help
+            })
+        }
         Some("run") => parse_run(args).map(Command::Run),
         Some(other) => Err(usage(format!("unknown command '{other}'"))),
     }
@@ -156,11 +166,20 @@ fn parse_run<'a>(mut args: impl Iterator<Item = &'a str>) -> Result<RunArgs, Usa
     let mut output = Output::Stdout;
     let mut trace = None;
     let mut progress = true;
+    let mut given: Vec<&str> = Vec::new();
     while let Some(arg) = args.next() {
         let (flag, inline) = match arg.split_once('=') {
             Some((f, v)) if f.starts_with("--") => (f, Some(v)),
             _ => (arg, None),
         };
+        // A flag given twice is a mistake either way: refused rather than one silently kept.
+        let canonical = if flag == "-o" { "--output" } else { flag };
+        if canonical.starts_with('-') && canonical.len() > 1 {
+            if given.contains(&canonical) {
+                return Err(usage(format!("{canonical} is given more than once")));
+            }
+            given.push(canonical);
+        }
         let mut value = |flag: &str| -> Result<&'a str, UsageError> {
             match inline {
                 Some(v) => Ok(v),

@@ -5,10 +5,10 @@
 
 use std::process::ExitCode;
 
-use sphere_physics::SceneDesc;
+use sphere_physics::{SceneDesc, SceneError};
 use sphere_sim::cli::{self, Command, Output, RunArgs};
 use sphere_sim::progress::Progress;
-use sphere_sim::run::{Playback, play};
+use sphere_sim::run::{PlayError, Playback, Prepared, play_prepared};
 use sphere_sim::trace::{TraceRow, TraceWriter};
 
 /// A failure and the exit code it maps to.
@@ -72,8 +72,49 @@ fn main() -> ExitCode {
 
 fn run_command(args: &RunArgs) -> Result<(), Failure> {
     let scene = SceneDesc::load(&args.scene).map_err(bad_input)?;
-    // Check the whole scene before creating any file.
-    scene.build().map_err(bad_input)?;
+    let playback = Playback {
+        duration: args.duration,
+        dt: args.dt,
+        method: args.method,
+    };
+    // Check the whole scene, the overrides and the number of steps before creating any file;
+    // errors found after parsing name the file too (parse errors already say where).
+    let prepared = Prepared::new(&scene, playback).map_err(|e| match e {
+        PlayError::Scene(SceneError::Io { .. } | SceneError::Parse { .. })
+        | PlayError::TooManySteps { .. } => bad_input(e),
+        e => bad_input(format!("{}: {e}", args.scene.display())),
+    })?;
+    // An output that is the scene or the trace would overwrite it.
+    let same = |a: &std::path::Path, b: &std::path::Path| {
+        a == b
+            || a.canonicalize()
+                .ok()
+                .is_some_and(|a| b.canonicalize().ok() == Some(a))
+    };
+    if let Output::File(path) = &args.output {
+        if same(path, &args.scene) {
+            return Err(bad_input(format!(
+                "--output {}: is the scene file itself",
+                path.display()
+            )));
+        }
+        if let Some((trace, _)) = &args.trace
+            && same(path, trace)
+        {
+            return Err(bad_input(format!(
+                "--output {}: is the --trace file too",
+                path.display()
+            )));
+        }
+    }
+    if let Some((trace, _)) = &args.trace
+        && same(trace, &args.scene)
+    {
+        return Err(bad_input(format!(
+            "--trace {}: is the scene file itself",
+            trace.display()
+        )));
+    }
     if let Output::File(path) = &args.output
         && path.is_dir()
     {
@@ -110,12 +151,7 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         }
         progress.update(world.steps(), total, world.time());
     };
-    let playback = Playback {
-        duration: args.duration,
-        dt: args.dt,
-        method: args.method,
-    };
-    let report = match play(&scene, playback, &mut observer) {
+    let report = match play_prepared(prepared, &mut observer) {
         Ok(report) => report,
         Err(e) => {
             progress.finish();

@@ -46,13 +46,16 @@ pub enum PlayError {
     },
     /// The duration needs too many steps.
     #[error(
-        "--duration {duration} at --dt {dt} needs {steps} steps, more than the limit of {MAX_STEPS}"
+        "--duration {duration} at a step of {dt} s ({step_from}) needs {steps} steps, more than the \
+         limit of {MAX_STEPS}"
     )]
     TooManySteps {
         /// Duration asked for.
         duration: f64,
         /// Step.
         dt: f64,
+        /// Where the step came from: `--dt`, the scene's `dt`, or the default.
+        step_from: &'static str,
         /// Steps needed.
         steps: f64,
     },
@@ -69,18 +72,21 @@ pub struct StepPlan {
 
 impl StepPlan {
     /// Splits `duration` into steps of `dt`. A duration within 1e-9 of a step of a whole
-    /// number of steps is that number of steps (so 2 s at 1/60 s is 120 steps).
+    /// number of steps is that number of steps (so 2 s at 1/60 s is 120 steps); for very many
+    /// steps, within the rounding of `duration / dt` (a few units in its last place).
     pub fn new(duration: f64, dt: f64) -> Result<Self, PlayError> {
         let ratio = duration / dt;
         if ratio > MAX_STEPS as f64 {
             return Err(PlayError::TooManySteps {
                 duration,
                 dt,
+                step_from: "--dt",
                 steps: ratio.ceil(),
             });
         }
         let nearest = ratio.round();
-        if (ratio - nearest).abs() <= 1e-9 * ratio.max(1.0) && nearest >= 1.0 {
+        let slack = 1e-9f64.max(4.0 * f64::EPSILON * ratio);
+        if (ratio - nearest).abs() <= slack && nearest >= 1.0 {
             return Ok(Self {
                 full: nearest as u64,
                 last: 0.0,
@@ -102,8 +108,11 @@ impl StepPlan {
 /// One body at the end of a run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BodyReport {
-    /// The sphere's name, or its index in the scene as a string.
+    /// The sphere's name, or its index in the scene as a string. Names need not be unique (two
+    /// gases' walls share theirs): `index` tells bodies apart.
     pub name: String,
+    /// Its index in the scene's order (listed spheres, then generated ones).
+    pub index: usize,
     /// Final position.
     pub position: [f64; 3],
     /// Final velocity.
@@ -213,23 +222,82 @@ impl<F: FnMut(&StepStats, &World, u64)> Observer for F {
     }
 }
 
+/// A scene's world built with a playback's overrides, every check done (the scene, the
+/// overrides, the number of steps), ready to play.
+pub struct Prepared {
+    world: World,
+    scene: String,
+    dt: f64,
+    duration: f64,
+    plan: StepPlan,
+}
+
+impl Prepared {
+    /// Builds `scene`'s world (generating its spheres once) with `playback`'s overrides.
+    pub fn new(scene: &SceneDesc, playback: Playback) -> Result<Self, PlayError> {
+        // The method asked for replaces the scene's before anything is checked (a scene's
+        // method out of range does not matter when it is overridden).
+        let overridden;
+        let scene = match playback.method {
+            Some(method) => {
+                overridden = SceneDesc {
+                    method: Some(method),
+                    ..scene.clone()
+                };
+                &overridden
+            }
+            None => scene,
+        };
+        let world = scene.build()?;
+        let (dt, source) = match (playback.dt, scene.dt) {
+            (Some(dt), _) => (dt, "--dt"),
+            (None, Some(dt)) => (dt, "the scene's dt"),
+            (None, None) => (DEFAULT_DT, "the default"),
+        };
+        let plan = StepPlan::new(playback.duration, dt).map_err(|e| match e {
+            PlayError::TooManySteps {
+                duration, steps, ..
+            } => PlayError::TooManySteps {
+                duration,
+                dt,
+                step_from: source,
+                steps,
+            },
+            other => other,
+        })?;
+        Ok(Self {
+            world,
+            scene: scene.name.clone(),
+            dt,
+            duration: playback.duration,
+            plan,
+        })
+    }
+
+    /// Steps the run will take.
+    pub fn planned_steps(&self) -> u64 {
+        self.plan.total()
+    }
+}
+
 /// Builds the scene's world with `playback`'s overrides and plays it.
 pub fn play(
     scene: &SceneDesc,
     playback: Playback,
     observer: &mut dyn Observer,
 ) -> Result<Report, PlayError> {
-    let mut settings = scene.settings()?;
-    if let Some(method) = playback.method {
-        settings.method = method;
-    }
-    let dt = playback.dt.or(scene.dt).unwrap_or(DEFAULT_DT);
-    let plan = StepPlan::new(playback.duration, dt)?;
-    let specs = scene.all_spheres()?;
-    let mut world = World::new(settings);
-    for desc in scene.sphere_descs()? {
-        world.add_sphere(desc).map_err(SceneError::from)?;
-    }
+    play_prepared(Prepared::new(scene, playback)?, observer)
+}
+
+/// Plays a prepared run.
+pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<Report, PlayError> {
+    let Prepared {
+        mut world,
+        scene,
+        dt,
+        duration,
+        plan,
+    } = prepared;
     let initial = Snapshot::of(&world);
     let planned = plan.total();
     let mut totals = (0u64, 0u64, 0u64, 0u64, 0u64);
@@ -261,10 +329,10 @@ pub fn play(
     let bodies = world
         .bodies()
         .iter()
-        .zip(&specs)
         .enumerate()
-        .map(|(i, (body, spec))| BodyReport {
-            name: spec.name.clone().unwrap_or_else(|| i.to_string()),
+        .map(|(index, body)| BodyReport {
+            name: body.name().map_or_else(|| index.to_string(), str::to_owned),
+            index,
             position: body.position().to_array(),
             velocity: body.velocity().to_array(),
             radius: body.radius(),
@@ -274,12 +342,12 @@ pub fn play(
         .collect();
     let sphere_steps = (world.len() as f64) * (world.steps() as f64);
     Ok(Report {
-        scene: scene.name.clone(),
+        scene,
         method: method_name(&world.settings().method),
         integrator: format!("{:?}", world.settings().integrator),
         substeps: world.settings().substeps,
         dt,
-        duration: playback.duration,
+        duration,
         time: world.time(),
         steps: world.steps(),
         bodies,

@@ -505,3 +505,137 @@ fn regression_an_argument_that_is_not_utf8_is_bad_input() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("argument 2 is not valid UTF-8"), "{err}");
 }
+
+/// Regressions found by a review of the runner: a duration of too many steps was found after
+/// the trace file had been created (and emptied), blaming a `--dt` never given; errors found
+/// after parsing did not name the file; a repeated flag silently kept the last value; an
+/// `--output` could overwrite the scene file or the trace; two bodies could share a name with
+/// nothing to tell them apart; a scene's out-of-range method was refused even when `--method`
+/// replaced it.
+#[test]
+fn regression_runner_review() {
+    let scene = assets().join("two_spheres.ron");
+    let scene_arg = scene.to_str().unwrap();
+    // Too many steps: refused before the trace is touched, naming where the step came from.
+    let trace = scratch("kept_trace.csv");
+    std::fs::write(&trace, "precious").unwrap();
+    assert_bad_input(
+        &[
+            "run",
+            scene_arg,
+            "--duration",
+            "2e7",
+            "--trace",
+            trace.to_str().unwrap(),
+        ],
+        &["20000000", "the default", "1000000000"],
+    );
+    assert_eq!(std::fs::read_to_string(&trace).unwrap(), "precious");
+    // An invalid sphere: the file's path first.
+    let bad = write_scene(
+        "review_bad_sphere.ron",
+        r#"(name: "bad", spheres: [(name: "flat", position: (0.0, 0.0, 0.0), radius: -2.0)])"#,
+    );
+    assert_bad_input(
+        &["run", bad.to_str().unwrap(), "--duration", "1"],
+        &["review_bad_sphere.ron: ", "flat", "radius"],
+    );
+    // Repeated flags, -o and --output alike; arguments after help or --version.
+    assert_bad_input(
+        &["run", scene_arg, "--duration", "1", "--duration", "100"],
+        &["--duration", "more than once"],
+    );
+    assert_bad_input(
+        &[
+            "run",
+            scene_arg,
+            "--duration",
+            "1",
+            "-o",
+            "a.json",
+            "--output=b.json",
+        ],
+        &["--output", "more than once"],
+    );
+    assert_bad_input(&["--version", "run"], &["unexpected argument 'run'"]);
+    // An output that is the scene, or the trace.
+    let copy = write_scene("review_copy.ron", &std::fs::read_to_string(&scene).unwrap());
+    let copy_arg = copy.to_str().unwrap();
+    assert_bad_input(
+        &["run", copy_arg, "--duration", "1", "-o", copy_arg],
+        &["scene file itself"],
+    );
+    let both = scratch("review_both.jsonl");
+    let both_arg = both.to_str().unwrap();
+    assert_bad_input(
+        &[
+            "run",
+            copy_arg,
+            "--duration",
+            "1",
+            "-o",
+            both_arg,
+            "--trace",
+            both_arg,
+        ],
+        &["--trace file too"],
+    );
+    assert_eq!(
+        std::fs::read_to_string(&copy).unwrap(),
+        std::fs::read_to_string(&scene).unwrap(),
+        "the scene file is untouched"
+    );
+    // Two gases' walls share names; each body carries its index.
+    let gases = write_scene(
+        "review_two_gases.ron",
+        r#"(name: "two gases", generate: [
+            Gas(count: 2, seed: 1, min: (-1.0, -1.0, -1.0), max: (1.0, 1.0, 1.0), radius: 0.1, speed: 1.0),
+            Gas(count: 2, seed: 2, min: (99.0, -1.0, -1.0), max: (101.0, 1.0, 1.0), radius: 0.1, speed: 1.0),
+        ])"#,
+    );
+    let r = report(&["run", gases.to_str().unwrap(), "--duration", "0.1"]);
+    let bodies = r["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 16);
+    for (i, b) in bodies.iter().enumerate() {
+        assert_eq!(b["index"], i);
+    }
+    assert_eq!(
+        bodies.iter().filter(|b| b["name"] == "wall xmin").count(),
+        2
+    );
+    // A scene method out of range does not matter when --method replaces it.
+    let slow = write_scene(
+        "review_slow_method.ron",
+        &std::fs::read_to_string(&scene).unwrap().replacen(
+            "(",
+            "(method: Bisection(max_iterations: 1000), ",
+            1,
+        ),
+    );
+    assert_bad_input(
+        &["run", slow.to_str().unwrap(), "--duration", "1"],
+        &["review_slow_method.ron: ", "1000"],
+    );
+    let r = report(&[
+        "run",
+        slow.to_str().unwrap(),
+        "--duration",
+        "1",
+        "--method",
+        "exact",
+    ]);
+    assert_eq!(r["method"], "exact");
+}
+
+/// Regression (review): a duration a hair off a whole number of steps, over very many steps,
+/// was rounded to that number by a tolerance that grew with the count (up to a whole step).
+#[test]
+fn regression_step_rounding_is_within_the_division_rounding() {
+    use sphere_sim::run::StepPlan;
+    let plan = StepPlan::new(999_999.999_4, 0.001).unwrap();
+    assert_eq!(plan.full, 999_999_999);
+    assert!((plan.last - 0.0004).abs() < 1e-6, "{plan:?}");
+    assert_eq!(StepPlan::new(2.0, 1.0 / 60.0).unwrap().full, 120);
+    let plan = StepPlan::new(1e6, 0.001).unwrap();
+    assert_eq!((plan.full, plan.last), (1_000_000_000, 0.0));
+}

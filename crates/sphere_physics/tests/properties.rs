@@ -38,16 +38,7 @@ proptest! {
     #[test]
     fn invariants_hold(spheres in scene(), dt in 0.005..0.2f64) {
         let mut world = World::new(Settings::default());
-        for (i, &(vx, vy, vz, r, rho, e, jitter)) in spheres.iter().enumerate() {
-            let grid = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
-            world.add_sphere(
-                SphereDesc::new(r)
-                    .at(grid + DVec3::splat(jitter * 0.5))
-                    .moving(DVec3::new(vx, vy, vz))
-                    .with_density(rho)
-                    .with_restitution(e),
-            ).unwrap();
-        }
+        common::add_drops(&mut world, &spheres);
         let p0 = world.momentum();
         let mut energy = world.kinetic_energy();
         for _ in 0..60 {
@@ -65,16 +56,8 @@ proptest! {
     #[test]
     fn elastic_scenes_keep_their_energy(spheres in scene(), dt in 0.005..0.2f64) {
         let mut world = World::new(Settings::default());
-        for (i, &(vx, vy, vz, r, rho, _, jitter)) in spheres.iter().enumerate() {
-            let grid = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
-            world.add_sphere(
-                SphereDesc::new(r)
-                    .at(grid + DVec3::splat(jitter * 0.5))
-                    .moving(DVec3::new(vx, vy, vz))
-                    .with_density(rho)
-                    .with_restitution(1.0),
-            ).unwrap();
-        }
+        let elastic: Vec<common::Drop> = spheres.iter().map(|&(vx, vy, vz, r, rho, _, jitter)| (vx, vy, vz, r, rho, 1.0, jitter)).collect();
+        common::add_drops(&mut world, &elastic);
         let energy = world.kinetic_energy();
         let mut collisions = 0;
         for step in 0..60 {
@@ -167,20 +150,7 @@ proptest! {
 /// not of zeros only.
 #[test]
 fn the_step_reports_the_largest_overlap_of_a_resting_column() {
-    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-    world
-        .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
-        .unwrap();
-    for k in 0..5 {
-        world
-            .add_sphere(
-                SphereDesc::new(0.1)
-                    .at(DVec3::new(2.0, k as f64, 1.0))
-                    .with_density(0.5)
-                    .with_restitution(0.0),
-            )
-            .unwrap();
-    }
+    let (mut world, _) = common::column_on_a_dome(5);
     let mut overlapping = 0;
     for step in 0..300 {
         let reported = world.step(0.0443324348313259).unwrap().max_overlap;

@@ -16,36 +16,12 @@
 
 mod common;
 
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
-
 const G: f64 = 9.81;
 const DT: f64 = 0.0443324348313259;
 
-/// A fixed dome of radius 3 with its top at y = -0.6, and `n` balls of radius 0.1 stacked
-/// above its top, 1 apart, at rest.
-fn column(n: usize) -> (World, Vec<sphere_physics::BodyId>) {
-    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -G, 0.0)));
-    world
-        .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
-        .unwrap();
-    let balls = (0..n)
-        .map(|k| {
-            world
-                .add_sphere(
-                    SphereDesc::new(0.1)
-                        .at(DVec3::new(2.0, k as f64, 1.0))
-                        .with_density(0.5)
-                        .with_restitution(0.0),
-                )
-                .unwrap()
-        })
-        .collect();
-    (world, balls)
-}
-
 #[test]
 fn a_column_on_a_dome_stays_up() {
-    let (mut world, balls) = column(5);
+    let (mut world, balls) = common::column_on_a_dome(5);
     let settings = world.settings().clone();
     let creep = settings.creep_fraction * settings.resting_factor * G * DT * DT;
     let mut worst: f64 = 0.0;

@@ -17,6 +17,12 @@ pub fn rain_on_a_dome(drops: &[Drop]) -> World {
     world
         .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
         .unwrap();
+    add_drops(&mut world, drops);
+    world
+}
+
+/// Adds one sphere per drop on a lattice of spacing 1 (five by five per layer).
+pub fn add_drops(world: &mut World, drops: &[Drop]) {
     for (i, &(vx, vy, vz, r, rho, e, jitter)) in drops.iter().enumerate() {
         let lattice = DVec3::new((i % 5) as f64, ((i / 5) % 5) as f64, (i / 25) as f64);
         world
@@ -29,7 +35,28 @@ pub fn rain_on_a_dome(drops: &[Drop]) -> World {
             )
             .unwrap();
     }
+}
+
+/// A fixed dome of radius 3 with its top at y = -0.6, and `n` balls of radius 0.1 (density
+/// 0.5, restitution 0) stacked above its top, 1 apart, at rest, under gravity 9.81 m/s².
+pub fn column_on_a_dome(n: usize) -> (World, Vec<BodyId>) {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
     world
+        .add_sphere(SphereDesc::new(3.0).at(DVec3::new(2.0, -3.6, 1.0)).fixed())
+        .unwrap();
+    let balls = (0..n)
+        .map(|k| {
+            world
+                .add_sphere(
+                    SphereDesc::new(0.1)
+                        .at(DVec3::new(2.0, k as f64, 1.0))
+                        .with_density(0.5)
+                        .with_restitution(0.0),
+                )
+                .unwrap()
+        })
+        .collect();
+    (world, balls)
 }
 
 /// How far a resting pair may sink into each other in one step of `dt` under that gravity

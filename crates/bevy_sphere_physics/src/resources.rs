@@ -3,6 +3,8 @@
 use std::collections::HashMap;
 
 use bevy::ecs::entity::EntityHashMap;
+use bevy::ecs::entity_disabling::Disabled;
+use bevy::ecs::query::Allow;
 use bevy::prelude::*;
 use sphere_physics::{BodyId, StepStats, World};
 
@@ -154,12 +156,35 @@ impl Command for ResetSpherePhysics {
     type Out = ();
 
     fn apply(self, world: &mut bevy::prelude::World) {
+        // Every sphere joins the new world afresh at the next `Prepare`: disabled ones too
+        // (their handles would name bodies of the new world), and rejected ones, checked
+        // again (a runaway may be fine under the new settings).
         let handles: Vec<Entity> = world
-            .query_filtered::<Entity, With<crate::SphereHandle>>()
+            .query_filtered::<Entity, (
+                Or<(With<crate::SphereHandle>, With<crate::RejectedSphere>)>,
+                Allow<Disabled>,
+            )>()
             .iter(world)
             .collect();
         for entity in handles {
-            world.entity_mut(entity).remove::<crate::SphereHandle>();
+            world
+                .entity_mut(entity)
+                .remove::<(crate::SphereHandle, crate::RejectedSphere)>();
+        }
+        // Removals `Prepare` has not handled yet: an entity that lives on without its
+        // `SphereBody` gets its `Transform` back, as `Prepare` would have done.
+        let removed = world
+            .get_resource_mut::<crate::systems::RemovedSpheres>()
+            .map(|mut removed| std::mem::take(&mut removed.0))
+            .unwrap_or_default();
+        for entity in removed {
+            if let Ok(mut entity) = world.get_entity_mut(entity) {
+                entity.remove::<(
+                    crate::SphereHandle,
+                    crate::SpherePosition,
+                    crate::PreviousSpherePosition,
+                )>();
+            }
         }
         // Profiling stays as it was; a custom integrator or time-of-impact method does not
         // (the settings' own are used).
@@ -169,9 +194,6 @@ impl Command for ResetSpherePhysics {
         let mut core = World::new(self.settings);
         core.set_profiling(profiling);
         world.insert_resource(SpherePhysicsWorld::new(core));
-        if let Some(mut removed) = world.get_resource_mut::<crate::systems::RemovedSpheres>() {
-            removed.0.clear();
-        }
         if let Some(mut stepped) = world.get_resource_mut::<crate::systems::Stepped>() {
             stepped.0 = false;
         }

@@ -4,6 +4,7 @@
 use std::time::Instant;
 
 use bevy::ecs::entity_disabling::Disabled;
+use bevy::ecs::system::SystemChangeTick;
 use bevy::math::DVec3;
 use bevy::prelude::*;
 use sphere_physics::{Body, SphereDesc, Tether, WorldError};
@@ -376,6 +377,7 @@ pub(crate) fn notify(
     physics: Res<SpherePhysicsWorld>,
     stepped: Res<Stepped>,
     mut collisions: MessageWriter<SphereCollision>,
+    spheres: Query<(), With<SphereBody>>,
 ) {
     if !stepped.0 {
         return;
@@ -384,6 +386,11 @@ pub(crate) fn notify(
         let (Some(a), Some(b)) = (physics.entity(c.a), physics.entity(c.b)) else {
             continue;
         };
+        // A sphere despawned (or no longer a sphere) since the step, by a game system after
+        // `Writeback`: nothing is said about it.
+        if !(spheres.contains(a) && spheres.contains(b)) {
+            continue;
+        }
         collisions.write(SphereCollision {
             a,
             b,
@@ -394,13 +401,21 @@ pub(crate) fn notify(
             resting: c.resting,
         });
         for (entity, other, normal) in [(a, b, c.normal), (b, a, -c.normal)] {
-            commands.trigger(SphereHit {
+            let hit = SphereHit {
                 entity,
                 other,
                 time: c.time,
                 normal,
                 impulse: c.impulse,
                 resting: c.resting,
+            };
+            // Checked again when it is triggered: an observer of an earlier hit may have
+            // despawned either sphere.
+            commands.queue(move |world: &mut World| {
+                let alive = |e| world.get::<SphereBody>(e).is_some();
+                if alive(hit.entity) && alive(hit.other) {
+                    world.trigger(hit);
+                }
             });
         }
     }
@@ -409,6 +424,15 @@ pub(crate) fn notify(
 /// The spheres whose `Transform`s the plugin writes: in the simulation and still spheres (one
 /// whose `SphereBody` was removed, its handle not yet, has its `Transform` back at once).
 type Shown = (With<SphereHandle>, With<SphereBody>);
+
+/// What `interpolate` reads and writes of each: its last two positions (with their change
+/// ticks), its `Transform`, and whether it opted out.
+type ShownSphere = (
+    Ref<'static, SpherePosition>,
+    Ref<'static, PreviousSpherePosition>,
+    &'static mut Transform,
+    Has<NoInterpolation>,
+);
 
 /// After the fixed steps of a frame: each sphere's `Transform` between its last two physics
 /// positions, by how far the fixed clock has run into the next step (and the simulated time
@@ -419,15 +443,8 @@ pub(crate) fn interpolate(
     stepped: Res<Stepped>,
     diagnostics: Res<SpherePhysicsDiagnostics>,
     mut shown: ResMut<SphereShownTime>,
-    mut spheres: Query<
-        (
-            &SpherePosition,
-            &PreviousSpherePosition,
-            &mut Transform,
-            Has<NoInterpolation>,
-        ),
-        Shown,
-    >,
+    mut spheres: Query<ShownSphere, Shown>,
+    ticks: SystemChangeTick,
 ) {
     let fraction = time.overstep_fraction_f64();
     // The previous positions are the last step's start (or, when it did not step, its end).
@@ -438,7 +455,12 @@ pub(crate) fn interpolate(
     };
     shown.set_if_neq(SphereShownTime(time_shown));
     for (position, previous, mut transform, opted_out) in &mut spheres {
-        let at: DVec3 = if options.interpolate && !opted_out {
+        // `Writeback` sets both at once; a position written later was the game's (a teleport):
+        // shown where it was put, not slid to from where the sphere was.
+        let teleported = position
+            .last_changed()
+            .is_newer_than(previous.last_changed(), ticks.this_run());
+        let at: DVec3 = if options.interpolate && !opted_out && !teleported {
             previous.0.lerp(position.0, fraction)
         } else {
             position.0

@@ -610,6 +610,149 @@ fn regression_reset_keeps_profiling_on() {
     assert!(physics.world.profile().is_none());
 }
 
+/// Regression (found by review): a sphere the game moved by writing its `SpherePosition`
+/// between fixed steps was drawn sliding from its old place (interpolated between its last
+/// physics position and the new one); it is shown where it was put at once.
+#[test]
+fn regression_a_teleport_is_shown_at_once() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 4);
+    let target = DVec3::new(10.0, 5.0, -3.0);
+    app.world_mut().get_mut::<SpherePosition>(ball).unwrap().0 = target;
+    // A frame with no fixed step.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_micros(
+        10,
+    )));
+    let steps = app.world().resource::<SpherePhysicsDiagnostics>().steps;
+    app.update();
+    assert_eq!(
+        app.world().resource::<SpherePhysicsDiagnostics>().steps,
+        steps
+    );
+    let shown = |app: &App| app.world().get::<Transform>(ball).unwrap().translation;
+    assert_eq!(shown(&app), target.as_vec3());
+    // And it moves on from there.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP));
+    run_steps(&mut app, 2);
+    assert_eq!(position(&app, ball), target + DVec3::X * 2.0 / 64.0);
+}
+
+/// Regression (found by review): collision messages and hits named spheres a game had
+/// despawned after `Writeback` (or an observer of an earlier hit had despawned), so the
+/// game's handlers met dead entities.
+#[test]
+fn regression_no_hits_for_despawned_spheres() {
+    #[derive(Resource, Default)]
+    struct Doomed(Option<Entity>);
+    let head_on = |app: &mut App| {
+        let a = app
+            .world_mut()
+            .spawn((
+                SphereBody::new(0.5),
+                SpherePosition(DVec3::new(-0.6, 0.0, 0.0)),
+                SphereVelocity(DVec3::X * 10.0),
+            ))
+            .id();
+        let b = app
+            .world_mut()
+            .spawn((
+                SphereBody::new(0.5),
+                SpherePosition(DVec3::new(0.6, 0.0, 0.0)),
+                SphereVelocity(-DVec3::X * 10.0),
+            ))
+            .id();
+        (a, b)
+    };
+    // A game system after `Writeback` despawns one of the pair.
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Seen>()
+        .init_resource::<Doomed>()
+        .add_systems(
+            FixedUpdate,
+            (
+                (|mut commands: Commands, mut doomed: ResMut<Doomed>| {
+                    if let Some(e) = doomed.0.take() {
+                        commands.entity(e).despawn();
+                    }
+                })
+                .after(SpherePhysicsSystems::Writeback)
+                .before(SpherePhysicsSystems::Notify),
+                (|mut reader: MessageReader<SphereCollision>, mut seen: ResMut<Seen>| {
+                    seen.messages.extend(reader.read().copied());
+                })
+                .after(SpherePhysicsSystems::Notify),
+            ),
+        )
+        .add_observer(|hit: On<SphereHit>, mut seen: ResMut<Seen>| {
+            seen.hits.push((hit.entity, hit.other));
+        });
+    let (a, _) = head_on(&mut app);
+    app.world_mut().resource_mut::<Doomed>().0 = Some(a);
+    run_steps(&mut app, 1);
+    let seen = app.world().resource::<Seen>();
+    assert!(app.world().get_entity(a).is_err());
+    assert!(
+        seen.messages.is_empty() && seen.hits.is_empty(),
+        "{:?}",
+        seen.hits
+    );
+
+    // An observer of the first hit despawns its sphere: the second hit, naming it, is not
+    // triggered.
+    let mut app = self::app(SpherePhysicsPlugin::default());
+    app.init_resource::<Seen>()
+        .add_observer(|hit: On<SphereHit>, mut seen: ResMut<Seen>| {
+            seen.hits.push((hit.entity, hit.other));
+        })
+        .add_observer(|hit: On<SphereHit>, mut commands: Commands| {
+            commands.entity(hit.entity).despawn();
+        });
+    let (a, b) = head_on(&mut app);
+    run_steps(&mut app, 1);
+    let seen = app.world().resource::<Seen>();
+    assert_eq!(seen.hits.len(), 1, "{:?}", seen.hits);
+    assert!([(a, b), (b, a)].contains(&seen.hits[0]));
+}
+
+/// Regression (found by review): a reset left a rejected sphere out of the new world for good
+/// (its rejection stood, though the new settings would take it), and left the `Transform` of
+/// an entity whose `SphereBody` had just been removed to the plugin.
+#[test]
+fn regression_a_reset_takes_rejected_spheres_again() {
+    // Under gravity of 1e308 m/s² a sphere this far down would fall past the largest f64.
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * 1e308));
+    let low = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::new(0.0, -1.7976e308, 0.0)),
+        ))
+        .id();
+    let kept = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), Transform::from_xyz(3.0, 0.0, 0.0)))
+        .id();
+    run_steps(&mut app, 1);
+    assert!(app.world().get::<RejectedSphere>(low).is_some());
+    // The game takes `kept` out of the physics and queues a reset in the same frame.
+    app.world_mut().entity_mut(kept).remove::<SphereBody>();
+    app.world_mut()
+        .commands()
+        .queue(ResetSpherePhysics::new(sphere_physics::Settings::default()));
+    app.world_mut().flush();
+    assert!(app.world().get::<SpherePosition>(kept).is_none());
+    run_steps(&mut app, 2);
+    assert!(app.world().get::<RejectedSphere>(low).is_none());
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert!(physics.body(low).is_some());
+    assert_eq!(physics.world.len(), 1);
+    assert_eq!(position(&app, low), DVec3::new(0.0, -1.7976e308, 0.0));
+}
+
 /// Regression (found by review): a sphere spawned with only a `SpherePosition` was drawn at
 /// the origin (its required `Transform`'s default) until its first step, and for good if it
 /// was rejected; its `Transform` shows its position from the moment it is spawned.

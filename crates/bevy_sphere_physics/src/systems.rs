@@ -222,7 +222,14 @@ pub(crate) fn prepare(
                     physics.entities.remove(&id);
                     commands.entity(entity).try_remove::<SphereHandle>();
                     if let sphere_physics::WorldError::Body(error) = error {
-                        reject(&mut commands, entity, desc, error);
+                        // Kept as the retry below describes it (with no body to take a missing
+                        // state from), so that only a change of its components retries it.
+                        reject(
+                            &mut commands,
+                            entity,
+                            describe(&item, &options, None),
+                            error,
+                        );
                     }
                 }
             }

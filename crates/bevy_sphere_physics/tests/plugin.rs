@@ -355,6 +355,30 @@ fn collect_rejections(app: &mut App) {
     );
 }
 
+/// Regression (found by review): a sphere without `SphereVelocity` whose change was invalid
+/// was reported twice (its stored rejection took the core's velocity, the retry the default).
+#[test]
+fn regression_a_sphere_without_velocity_is_rejected_once() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    collect_rejections(&mut app);
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 2);
+    app.world_mut().entity_mut(ball).remove::<SphereVelocity>();
+    app.world_mut().get_mut::<SphereBody>(ball).unwrap().radius = -1.0;
+    run_steps(&mut app, 4);
+    let seen = &app.world().resource::<Rejections>().0;
+    assert_eq!(seen.len(), 1, "{seen:?}");
+    assert_eq!(seen[0].error.field, Field::Radius);
+    // Fixed: it joins again, once.
+    app.world_mut().get_mut::<SphereBody>(ball).unwrap().radius = 0.5;
+    run_steps(&mut app, 1);
+    assert!(app.world().get::<RejectedSphere>(ball).is_none());
+    assert_eq!(app.world().resource::<Rejections>().0.len(), 1);
+}
+
 #[test]
 fn invalid_components_are_reported_and_left_out_until_fixed() {
     let mut app = app(SpherePhysicsPlugin::default());

@@ -171,6 +171,9 @@ const PAIR_BATCH: usize = 16;
 /// at the bottom of the 100k-sphere shower benchmark's pile takes up to 381.
 const BODY_SHARE: u32 = 16;
 
+/// Half the largest f64: two numbers below it in size add to a finite one.
+const HALF_RANGE: f64 = f64::MAX / 2.0;
+
 /// Scratch space for stepping, kept between steps so a warmed-up step does not allocate.
 #[derive(Debug, Default)]
 pub(crate) struct Solver {
@@ -179,6 +182,9 @@ pub(crate) struct Solver {
     extras: Vec<Extra>,
     /// Each body's velocity kick after the drift, in body order (read only at the end).
     kicks_after: Vec<DVec3>,
+    /// The largest component of any kick after the drift: when it is below half the largest
+    /// f64, a velocity below that half cannot overflow when its kick is added.
+    largest_kick_after: f64,
     /// The string states that [`Extra::string`] points to.
     strung: Vec<Strung>,
     /// Whether any body hangs on a string this step.
@@ -436,6 +442,7 @@ impl Solver {
         // root per body; and a tiny acceleration whose length would underflow still counts).
         let mut largest_acceleration = 0.0f64;
         self.strings = false;
+        self.largest_kick_after = 0.0;
         let mut overflow = None;
         for (index, body) in bodies.iter().enumerate() {
             let (acceleration, kicks) = if body.is_fixed() {
@@ -479,6 +486,7 @@ impl Solver {
             self.boxes.push(swept_box(&segment, dt, settings));
             self.segments.push(segment);
             self.kicks_after.push(kicks.1);
+            self.largest_kick_after = self.largest_kick_after.max(kicks.1.abs().max_element());
             self.extras.push(Extra {
                 inverse_mass: body.inverse_mass(),
                 acceleration,
@@ -1038,8 +1046,8 @@ impl Solver {
             self.touch(c.a);
             self.touch(c.b);
             let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
-            stats.collisions += 1;
-            stats.resting_contacts += 1;
+            stats.collisions = stats.collisions.saturating_add(1);
+            stats.resting_contacts = stats.resting_contacts.saturating_add(1);
             self.collisions.push(collision(
                 self.extra(a).id,
                 self.extra(b).id,
@@ -1139,7 +1147,13 @@ impl Solver {
     // `x - x` below is the point, not a slip.
     #[allow(clippy::eq_op)]
     fn check_bounded(&mut self, k: usize) {
-        let (b, v) = (&self.boxes[k], self.segments[k].velocity);
+        // The velocity it will end the step with: its kick after the drift comes on top (looked
+        // up only when the sum could overflow, which needs one of them past half the range).
+        let mut v = self.segments[k].velocity;
+        if !(v.abs().max_element() < HALF_RANGE && self.largest_kick_after < HALF_RANGE) {
+            v += self.kicks_after[self.order[k] as usize];
+        }
+        let b = &self.boxes[k];
         // `x - x` is 0 for every finite `x` and NaN for an infinite or NaN one: one comparison
         // for all nine values, without a branch each.
         if (b.lo - b.lo) + (b.hi - b.hi) + (v - v) != DVec3::ZERO {
@@ -1366,8 +1380,8 @@ impl Solver {
                 self.local_bodies[c.a] as usize,
                 self.local_bodies[c.b] as usize,
             );
-            stats.collisions += 1;
-            stats.resting_contacts += u32::from(resting);
+            stats.collisions = stats.collisions.saturating_add(1);
+            stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
             if impulse <= 0.0 {
                 self.settled.push(Settled::now(&self.versions, a, b));
             } else if resting {
@@ -1577,8 +1591,8 @@ impl Solver {
             self.instant
                 .record(event.a, event.b, moving(&self.segments));
         }
-        stats.collisions += 1;
-        stats.resting_contacts += u32::from(resting);
+        stats.collisions = stats.collisions.saturating_add(1);
+        stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
         self.collisions.push(collision(
             self.extra(a).id,
             self.extra(b).id,

@@ -54,6 +54,8 @@ pub struct Settings {
     /// more than 16 times this in one step (so that a sphere caught between fixed ones, which
     /// bounces between them without end, cannot spend the whole budget); collisions beyond
     /// either are deferred to the next step and counted in [`StepStats::collisions_deferred`].
+    /// With substeps, each substep has this budget (and records its collisions): a wedged
+    /// sphere may take `substeps` times as many in one [`World::step`].
     /// Default 64, at most [`MAX_COLLISIONS_PER_BODY`].
     pub max_collisions_per_body: u32,
 }
@@ -78,7 +80,7 @@ impl Default for Settings {
 pub const MAX_SUBSTEPS: u32 = 65_536;
 
 /// The largest [`Settings::max_collisions_per_body`]: a sphere wedged between fixed ones then
-/// takes at most about a million collisions in a step (each one recorded), not billions.
+/// takes at most about a million collisions in a substep (each one recorded), not billions.
 pub const MAX_COLLISIONS_PER_BODY: u32 = 65_536;
 
 /// The most bisection iterations: after 64 halvings an f64 interval cannot shrink further.

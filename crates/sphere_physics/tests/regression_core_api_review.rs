@@ -131,3 +131,29 @@ fn regression_gas_walls_too_large_to_resolve_the_gas_are_refused() {
     let error = scene.build().unwrap_err().to_string();
     assert!(error.contains("wall_radius"), "{error}");
 }
+
+/// Regression (found by review of the solver): a step ended with a body's velocity infinite
+/// and reported success: the check for the finite range looked at a struck body's velocity
+/// before the integrator's kick after the drift (leapfrog's second half kick) was added.
+#[test]
+fn regression_the_kick_after_an_impulse_cannot_overflow_unnoticed() {
+    let mut world = World::new(Settings {
+        gravity: DVec3::X * 1.2e308,
+        integrator: sphere_physics::IntegratorKind::Leapfrog,
+        // An elastic impact, not a resting contact (under this gravity every contact rests).
+        resting_factor: 0.0,
+        ..Settings::default()
+    });
+    // A moving fixed (kinematic) striker at 0.9e308 m/s touching a ball that its first half
+    // kick gives 0.6e308 m/s: the ball leaves at 2 · 0.9e308 - 0.6e308 = 1.2e308 m/s, and the
+    // half kick after the drift would take it past the largest f64.
+    world
+        .add_sphere(SphereDesc::new(0.5).fixed().moving(DVec3::X * 0.9e308))
+        .unwrap();
+    let ball = world.add_sphere(SphereDesc::new(0.5).at(DVec3::X)).unwrap();
+    let error = world.step(1.0).unwrap_err();
+    assert!(error.to_string().contains("finite range"), "{error}");
+    let body = world.body(ball).unwrap();
+    assert_eq!((body.position(), body.velocity()), (DVec3::X, DVec3::ZERO));
+    assert_eq!(world.steps(), 0);
+}

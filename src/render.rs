@@ -66,7 +66,8 @@ impl Plugin for LabRenderPlugin {
 /// Meshes and materials every scene shares.
 #[derive(Resource)]
 struct LabAssets {
-    sphere: Handle<Mesh>,
+    /// Unit spheres by detail: `(sectors, mesh)`, made as a scene needs them.
+    spheres: Vec<(u32, Handle<Mesh>)>,
     rod: Handle<Mesh>,
     ground: Handle<Mesh>,
     blue: Handle<StandardMaterial>,
@@ -91,7 +92,7 @@ fn setup(
         })
     };
     commands.insert_resource(LabAssets {
-        sphere: meshes.add(Sphere::new(1.0).mesh().uv(32, 18)),
+        spheres: vec![(32, meshes.add(unit_sphere(32)))],
         rod: meshes.add(Cylinder::new(1.0, 1.0)),
         ground: meshes.add(Plane3d::default().mesh().size(1.0, 1.0)),
         blue: shiny(colours::BLUE, 0.3),
@@ -117,6 +118,26 @@ fn setup(
     ));
 }
 
+/// A unit sphere of `sectors` around and about half as many bands from pole to pole.
+fn unit_sphere(sectors: u32) -> Mesh {
+    Sphere::new(1.0).mesh().uv(sectors, sectors / 2 + 2)
+}
+
+/// The detail a sphere of `radius` needs so that its flat facets sit within 1% of the smallest
+/// moving sphere's radius (`smallest`) of its true surface: a big fixed sphere used as ground
+/// drawn with the small spheres' 32 sectors would sink its facets' middles far below where the
+/// spheres resting on it touch (0.4 m for a ground of radius 100). Sectors `n` leave a facet
+/// `R (1 - cos(π/n))` inside, about `R π² / (2 n²)`; a power of two from 32 to 512.
+fn sectors_for(radius: f64, smallest: f64) -> u32 {
+    if !(smallest.is_finite() && smallest > 0.0) {
+        return 32;
+    }
+    let needed = std::f64::consts::PI * (radius / (0.02 * smallest)).sqrt();
+    (needed.clamp(32.0, 512.0).ceil() as u32)
+        .next_power_of_two()
+        .min(512)
+}
+
 /// The sphere's visual: a child scaled to the radius, so the physics owns the parent's
 /// transform.
 #[derive(Component)]
@@ -133,17 +154,21 @@ struct StringVisual;
 #[allow(clippy::type_complexity)]
 fn dress_spheres(
     mut commands: Commands,
-    assets: Res<LabAssets>,
+    mut assets: ResMut<LabAssets>,
+    mut meshes: ResMut<Assets<Mesh>>,
     new: Query<(Entity, &SphereBody, &Density, Has<FixedSphere>), Without<Dressed>>,
     all: Query<(&SphereBody, &Density, Has<FixedSphere>)>,
 ) {
     if new.is_empty() {
         return;
     }
-    let lightest = all
-        .iter()
-        .filter(|(b, _, fixed)| !fixed && b.radius <= WALL_RADIUS)
-        .map(|(_, d, _)| d.0)
+    let moving = || {
+        all.iter()
+            .filter(|(b, _, fixed)| !fixed && b.radius <= WALL_RADIUS)
+    };
+    let lightest = moving().map(|(_, d, _)| d.0).fold(f64::INFINITY, f64::min);
+    let smallest = moving()
+        .map(|(b, _, _)| b.radius)
         .fold(f64::INFINITY, f64::min);
     for (entity, body, density, fixed) in &new {
         commands.entity(entity).insert(Dressed);
@@ -162,12 +187,21 @@ fn dress_spheres(
                 assets.red.clone()
             }
         };
+        let sectors = sectors_for(body.radius, smallest);
+        let mesh = match assets.spheres.iter().find(|(n, _)| *n == sectors) {
+            Some((_, mesh)) => mesh.clone(),
+            None => {
+                let mesh = meshes.add(unit_sphere(sectors));
+                assets.spheres.push((sectors, mesh.clone()));
+                mesh
+            }
+        };
         commands
             .entity(entity)
             .insert(Visibility::default())
             .with_child((
                 SphereVisual,
-                Mesh3d(assets.sphere.clone()),
+                Mesh3d(mesh),
                 MeshMaterial3d(material),
                 Transform::from_scale(Vec3::splat(body.radius as f32)),
             ));

@@ -74,6 +74,13 @@ pub(crate) fn keyboard_actions(
             actions.write(LabAction::CloseChooser);
         }
     }
+    // The scene's keys wait while the chooser covers it (its buttons still work).
+    if ui.chooser_open {
+        if pressed(KeyCode::Space) {
+            actions.write(LabAction::Screenshot);
+        }
+        return;
+    }
     if pressed(KeyCode::KeyP) {
         actions.write(LabAction::TogglePause);
     }

@@ -119,6 +119,9 @@ impl LabPlugin {
 pub enum LabSystems {
     /// Keys and buttons become [`LabAction`]s.
     Input,
+    /// The keyboard's part of `Input` (skipped while egui takes text input, with the
+    /// `render` feature's UI).
+    Keys,
     /// Actions are carried out.
     Act,
     /// Captured frames are saved.
@@ -149,10 +152,12 @@ impl Plugin for LabPlugin {
                 Update,
                 (LabSystems::Input, LabSystems::Act, LabSystems::Save).chain(),
             )
+            .configure_sets(Update, LabSystems::Keys.in_set(LabSystems::Input))
             .add_systems(
                 Update,
                 (
-                    (controls::keyboard_actions, controls::autopilot).in_set(LabSystems::Input),
+                    controls::keyboard_actions.in_set(LabSystems::Keys),
+                    controls::autopilot.in_set(LabSystems::Input),
                     controls::apply_actions.in_set(LabSystems::Act),
                     screenshot::save_captured_frames.in_set(LabSystems::Save),
                 ),

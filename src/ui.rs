@@ -17,7 +17,13 @@ pub struct LabUiPlugin;
 
 impl Plugin for LabUiPlugin {
     fn build(&self, app: &mut App) {
-        app.add_systems(EguiPrimaryContextPass, (panel, chooser).chain());
+        // Keys typed into an egui text field (a game's own UI) are not the lab's.
+        app.add_systems(EguiPrimaryContextPass, (panel, chooser).chain())
+            .configure_sets(
+                Update,
+                crate::LabSystems::Keys
+                    .run_if(not(bevy_egui::input::egui_wants_any_keyboard_input)),
+            );
     }
 }
 
@@ -27,10 +33,16 @@ fn chooser(
     scenes: Res<LabScenes>,
     state: Res<State<ActiveScene>>,
     mut actions: MessageWriter<LabAction>,
+    mut shown_selection: Local<Option<usize>>,
 ) -> Result {
     if !ui_state.chooser_open {
+        *shown_selection = None;
         return Ok(());
     }
+    // Up and Down move the selection: the list scrolls to keep it in view (once per change,
+    // so the wheel still scrolls freely).
+    let follow = *shown_selection != Some(ui_state.selected);
+    *shown_selection = Some(ui_state.selected);
     let ctx = contexts.ctx_mut()?;
     egui::Window::new("Choose a scene")
         .collapsible(false)
@@ -44,6 +56,9 @@ fn chooser(
                     for (i, scene) in scenes.iter().enumerate() {
                         let selected = ui_state.selected == i;
                         let label = ui.selectable_label(selected, &scene.name);
+                        if selected && follow {
+                            label.scroll_to_me(None);
+                        }
                         if label.clicked() {
                             ui_state.selected = i;
                         }

@@ -763,3 +763,26 @@ fn regression_a_code_scene_with_bad_settings_is_left_out() {
             .is_some_and(|f| f.contains("substeps"))
     );
 }
+
+/// Regression (found by review): P, N and R acted on the scene behind the open chooser (while
+/// its arrow keys moved the chooser's selection); they wait until it is closed.
+#[test]
+fn regression_scene_keys_wait_while_the_chooser_is_open() {
+    let mut app = lab_with(Some("density_collisions"));
+    for _ in 0..10 {
+        app.update();
+    }
+    press(&mut app, KeyCode::Enter);
+    assert!(app.world().resource::<LabUi>().chooser_open);
+    let before = sim_time(&app);
+    assert!(before > 0.0);
+    for key in [KeyCode::KeyP, KeyCode::KeyN, KeyCode::KeyR] {
+        press(&mut app, key);
+    }
+    assert!(!app.world().resource::<SpherePhysicsClock>().paused);
+    assert!(sim_time(&app) >= before, "restarted");
+    assert_eq!(state(&app), ActiveScene::scene("density_collisions"));
+    press(&mut app, KeyCode::Escape);
+    press(&mut app, KeyCode::KeyP);
+    assert!(app.world().resource::<SpherePhysicsClock>().paused);
+}

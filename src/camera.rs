@@ -69,6 +69,10 @@ fn spawn_camera(mut commands: Commands) {
 /// Frames the spheres (and anchors) of a scene just entered.
 fn frame_scene(spheres: Query<SphereExtent>, mut cameras: Query<(&mut OrbitCamera, &Projection)>) {
     let Some((low, high)) = scene_bounds_of(&spheres) else {
+        // Nothing to frame: the default view, not the last scene's.
+        for (mut orbit, _) in &mut cameras {
+            *orbit = OrbitCamera::default();
+        }
         return;
     };
     for (mut orbit, projection) in &mut cameras {
@@ -88,7 +92,7 @@ fn frame_scene(spheres: Query<SphereExtent>, mut cameras: Query<(&mut OrbitCamer
 
 #[allow(clippy::too_many_arguments)]
 fn orbit(
-    mut cameras: Query<(&mut OrbitCamera, &mut Transform)>,
+    mut cameras: Query<(&mut OrbitCamera, &mut Transform, &mut Projection)>,
     motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
     buttons: Res<ButtonInput<MouseButton>>,
@@ -120,7 +124,7 @@ fn orbit(
             + axis(KeyCode::NumpadSubtract, KeyCode::NumpadAdd);
         zoom += keys_zoom.clamp(-1.0, 1.0) * rate;
     }
-    for (mut orbit, mut transform) in &mut cameras {
+    for (mut orbit, mut transform, mut projection) in &mut cameras {
         if turn != Vec2::ZERO || zoom != 0.0 {
             orbit.yaw -= turn.x;
             orbit.pitch = (orbit.pitch + turn.y).clamp(-1.5, 1.5);
@@ -129,6 +133,15 @@ fn orbit(
         let wanted = orbit.transform();
         if *transform != wanted {
             *transform = wanted;
+        }
+        // Everything framed stays in front of the far plane (Bevy's 1000 m would cut off a
+        // scene hundreds of metres across, framed from farther away than that, or one zoomed
+        // out on): a scene framed at `distance` lies within about 1.4 times it.
+        let far = (orbit.distance * 4.0).max(1000.0);
+        if matches!(&*projection, Projection::Perspective(p) if p.far != far)
+            && let Projection::Perspective(perspective) = &mut *projection
+        {
+            perspective.far = far;
         }
     }
 }

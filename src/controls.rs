@@ -203,7 +203,7 @@ pub(crate) fn autopilot(
     let Some(before) = pilot.requested else {
         // A few frames first, so the window and the panels have been drawn; without a scene
         // the time stays 0 and the chooser is captured.
-        let ready = ready.is_none_or(|r| r.frames >= 10);
+        let ready = ready.is_none_or(|r| r.settled());
         let due = shown.0 >= at || *state.get() == ActiveScene::None;
         if ready && *frames > 3 && due {
             pilot.requested = Some(outcomes);

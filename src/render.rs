@@ -411,7 +411,7 @@ fn hold_until_drawn(
     mut time: ResMut<Time<Virtual>>,
     mut holding: Local<bool>,
 ) {
-    let drawing = ready.frames >= 2;
+    let drawing = ready.settled();
     if drawing && *holding {
         *holding = false;
         if time.is_paused() {

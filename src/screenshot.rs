@@ -51,6 +51,18 @@ pub struct RenderReady {
     pub frames: u32,
 }
 
+impl RenderReady {
+    /// Frames in a row with every pipeline compiled after which the picture is taken as
+    /// settled (the window and the panels drawn): the simulation's clock is held until then,
+    /// and unattended screenshots wait for it, so one is taken at its mark.
+    pub const SETTLED: u32 = 10;
+
+    /// Whether [`RenderReady::SETTLED`] frames have been drawn in a row.
+    pub fn settled(&self) -> bool {
+        self.frames >= Self::SETTLED
+    }
+}
+
 /// The last screenshot's outcome, shown on screen.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct ScreenshotStatus {

@@ -74,16 +74,29 @@ pub struct ScreenshotStatus {
     pub failed: u32,
 }
 
-/// Stamps `time` onto `image` and saves it as a PNG in `folder` (created if missing), under
-/// the first free name `sphere-lab-NNN.png`. Returns the file's path, or an error that says
-/// what could not be done where.
+/// Stamps `time` onto `image` and saves it as a PNG in `folder` (created if missing), as
+/// `sphere-lab-NNN.png` numbered after the highest already there (so the names follow the
+/// order the pictures were taken, even after some were deleted). Returns the file's path, or
+/// an error that says what could not be done where.
 pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result<PathBuf, String> {
     std::fs::create_dir_all(folder)
         .map_err(|e| format!("cannot create folder {}: {e}", folder.display()))?;
     stamp_time(&mut image, time);
     // Claim the name by creating the file (never overwriting one, even if another lab saves
     // into the same folder at the same moment), then write into it.
-    for n in 0.. {
+    let next = std::fs::read_dir(folder)
+        .map_err(|e| format!("cannot list folder {}: {e}", folder.display()))?
+        .filter_map(|entry| {
+            let name = entry.ok()?.file_name();
+            let number = name
+                .to_str()?
+                .strip_prefix("sphere-lab-")?
+                .strip_suffix(".png")?;
+            number.parse::<u64>().ok()
+        })
+        .max()
+        .map_or(0, |highest| highest.saturating_add(1));
+    for n in next.. {
         let path = folder.join(format!("sphere-lab-{n:03}.png"));
         let file = match std::fs::OpenOptions::new()
             .write(true)

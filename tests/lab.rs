@@ -786,3 +786,26 @@ fn regression_scene_keys_wait_while_the_chooser_is_open() {
     press(&mut app, KeyCode::KeyP);
     assert!(app.world().resource::<SpherePhysicsClock>().paused);
 }
+
+/// Regression (found by review): a screenshot took the first free number, so after one was
+/// deleted the next reused its name and the names no longer followed the order they were
+/// taken in; now it is numbered after the highest there.
+#[test]
+fn regression_screenshot_names_follow_the_order_taken() {
+    let dir = temp_dir("numbering");
+    std::fs::create_dir_all(&dir).unwrap();
+    for n in [0, 2] {
+        std::fs::write(dir.join(format!("sphere-lab-{n:03}.png")), b"kept").unwrap();
+    }
+    std::fs::write(dir.join("sphere-lab-notes.png"), b"not a number").unwrap();
+    let image = image::RgbaImage::new(64, 32);
+    let first = sphere_lab::screenshot::save_screenshot(&dir, image.clone(), 1.5).unwrap();
+    assert_eq!(first, dir.join("sphere-lab-003.png"));
+    let second = sphere_lab::screenshot::save_screenshot(&dir, image, 2.5).unwrap();
+    assert_eq!(second, dir.join("sphere-lab-004.png"));
+    assert_eq!(
+        std::fs::read(dir.join("sphere-lab-002.png")).unwrap(),
+        b"kept"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

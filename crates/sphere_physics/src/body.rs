@@ -10,6 +10,12 @@ use glam::DVec3;
 /// smaller than some 1e134 m on its surface anyway).
 pub const MAX_RADIUS: f64 = 1e150;
 
+/// The largest mass a moving sphere may have, 1e200 kg: the impulse between two such spheres
+/// (mass times speed) stays within an f64 for any speed below 1e108 m/s. Heavier spheres
+/// overflowed it, and the world refused every step from then on. A fixed sphere has no mass
+/// and no limit.
+pub const MAX_MASS: f64 = 1e200;
+
 /// Stable identifier of a body in a [`World`](crate::World). Ids are never reused (64 bits: a
 /// world adding a million spheres a second runs out after half a million years). Ties between
 /// simultaneous events are broken by a deterministic order (ids in small scenes, the broad
@@ -207,25 +213,26 @@ impl SphereDesc {
                 ));
             }
         }
-        // The mass `Body::new` will use, and its inverse: both must be finite and > 0. The
-        // radius is to blame when its volume alone (at density 1) is out of range.
+        // The mass `Body::new` will use, and its inverse: both must be finite and > 0, and the
+        // mass at most `MAX_MASS`. The radius is to blame when its volume alone (at density
+        // 1) is out of range.
         let mass_ok = |density| {
             let mass = mass_of(density, self.radius);
             let inverse = 1.0 / mass;
-            mass.is_finite() && mass > 0.0 && inverse.is_finite() && inverse > 0.0
+            mass.is_finite() && mass > 0.0 && mass <= MAX_MASS && inverse.is_finite()
         };
         if !(self.fixed || mass_ok(self.density)) {
             return Err(if mass_ok(1.0) {
                 err(
                     Field::Density,
                     self.density,
-                    "gives a mass that is 0 or infinite",
+                    "gives a mass that is 0 or above 1e200 kg",
                 )
             } else {
                 err(
                     Field::Radius,
                     self.radius,
-                    "gives a volume, and so a mass, that is 0 or infinite",
+                    "gives a volume, and so a mass, that is 0 or above 1e200 kg",
                 )
             });
         }

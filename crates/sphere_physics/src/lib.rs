@@ -51,7 +51,7 @@ pub mod toi;
 pub mod tolerance;
 pub mod world;
 
-pub use body::{Body, BodyError, BodyId, Field, MAX_RADIUS, SphereDesc, Tether};
+pub use body::{Body, BodyError, BodyId, Field, MAX_MASS, MAX_RADIUS, SphereDesc, Tether};
 pub use contact::{ContactKind, Kinematics, classify};
 pub use glam;
 pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};

@@ -6,8 +6,8 @@
 use sphere_physics::generate::Generator;
 use sphere_physics::glam::DVec3;
 use sphere_physics::{
-    Bisection, Field, GroupContact, MAX_BISECTION_ITERATIONS, MAX_RADIUS, SceneDesc, Settings,
-    SphereDesc, TimeOfImpact, Tolerance, World, resolve, resolve_simultaneous,
+    Bisection, Field, GroupContact, MAX_BISECTION_ITERATIONS, MAX_MASS, MAX_RADIUS, SceneDesc,
+    Settings, SphereDesc, TimeOfImpact, Tolerance, World, resolve, resolve_simultaneous,
 };
 
 #[test]
@@ -156,4 +156,41 @@ fn regression_the_kick_after_an_impulse_cannot_overflow_unnoticed() {
     let body = world.body(ball).unwrap();
     assert_eq!((body.position(), body.velocity()), (DVec3::X, DVec3::ZERO));
     assert_eq!(world.steps(), 0);
+}
+
+/// Regression (found by review of the solver): spheres heavy enough that the impulse between
+/// them (mass times speed) overflowed an f64 had every step refused from then on; a moving
+/// sphere's mass is now held to `MAX_MASS` (1e200 kg), under which impulses stay finite.
+#[test]
+fn regression_a_mass_whose_impulses_overflow_is_refused() {
+    let mut world = World::new(Settings::default());
+    let error = world
+        .add_sphere(SphereDesc::new(1e100).with_density(1e6))
+        .unwrap_err();
+    assert_eq!(error.field, Field::Radius);
+    assert!(error.to_string().contains("1e200"), "{error}");
+    let error = world
+        .add_sphere(SphereDesc::new(1.0).with_density(1e201))
+        .unwrap_err();
+    assert_eq!(error.field, Field::Density);
+    assert!(world.is_empty());
+    // Two of the heaviest, touching head on at 30 m/s each: they swap velocities.
+    let r = 2.8e66;
+    let a = world
+        .add_sphere(SphereDesc::new(r).at(DVec3::X * -r).moving(DVec3::X * 30.0))
+        .unwrap();
+    let b = world
+        .add_sphere(SphereDesc::new(r).at(DVec3::X * r).moving(DVec3::X * -30.0))
+        .unwrap();
+    assert!(world.body(a).unwrap().mass() > 0.9e200 && world.body(a).unwrap().mass() <= MAX_MASS);
+    world.step(1.0 / 60.0).unwrap();
+    let (va, vb) = (
+        world.body(a).unwrap().velocity(),
+        world.body(b).unwrap().velocity(),
+    );
+    assert!(
+        (va.x + 30.0).abs() < 1e-12 && (vb.x - 30.0).abs() < 1e-12,
+        "{va} {vb}"
+    );
+    assert!(world.collisions()[0].impulse.is_finite());
 }

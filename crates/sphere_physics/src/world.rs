@@ -310,17 +310,17 @@ impl World {
 
     /// Sets a body's velocity.
     pub fn set_velocity(&mut self, id: BodyId, velocity: DVec3) -> Result<(), WorldError> {
-        self.update(id, Field::Velocity, velocity, |d, v| d.velocity = v)
+        self.update(id, Field::Velocity, velocity, |d| &mut d.velocity)
     }
 
     /// Sets a body's position.
     pub fn set_position(&mut self, id: BodyId, position: DVec3) -> Result<(), WorldError> {
-        self.update(id, Field::Position, position, |d, v| d.position = v)
+        self.update(id, Field::Position, position, |d| &mut d.position)
     }
 
     /// Sets a body's constant applied force.
     pub fn set_force(&mut self, id: BodyId, force: DVec3) -> Result<(), WorldError> {
-        self.update(id, Field::Force, force, |d, v| d.force = v)
+        self.update(id, Field::Force, force, |d| &mut d.force)
     }
 
     fn update(
@@ -328,7 +328,7 @@ impl World {
         id: BodyId,
         field: Field,
         value: DVec3,
-        set: impl FnOnce(&mut SphereDesc, DVec3),
+        slot: fn(&mut SphereDesc) -> &mut DVec3,
     ) -> Result<(), WorldError> {
         let index = self.index(id)?;
         if let Some(bad) = value.to_array().into_iter().find(|c| !c.is_finite()) {
@@ -342,13 +342,15 @@ impl World {
             }
             .into());
         }
-        // Validate the whole description (a position beyond the body's string is invalid).
-        let body = &self.bodies[index];
-        let mut desc = body.desc.clone();
-        set(&mut desc, value);
-        desc.validate(|| label(body.name(), id))
-            .map_err(|e| BodyError { id: Some(id), ..e })?;
-        self.bodies[index].desc = desc;
+        // Validate the whole description (a position beyond the body's string is invalid), in
+        // place: the old value is put back if it fails (no copy of the description, whose name
+        // would be allocated at every call).
+        let body = &mut self.bodies[index];
+        let previous = std::mem::replace(slot(&mut body.desc), value);
+        if let Err(e) = body.desc.validate(|| label(body.name(), id)) {
+            *slot(&mut body.desc) = previous;
+            return Err(BodyError { id: Some(id), ..e }.into());
+        }
         Ok(())
     }
 

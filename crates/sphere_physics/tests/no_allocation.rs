@@ -1,11 +1,12 @@
 //! Once warmed up, a step allocates nothing: a counting allocator watches steps of a shower
 //! piling onto a dome (resting contacts, simultaneous groups, bodies leaving the grid), of a
-//! gas in a box of wall spheres, and of a gas without walls spreading out.
+//! gas in a box of wall spheres, and of a gas without walls spreading out; nor do the setters
+//! a game calls every frame (velocity, force, position).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-use sphere_physics::{SceneDesc, World};
+use sphere_physics::{BodyId, SceneDesc, Settings, SphereDesc, World, glam::DVec3};
 
 /// Counts allocations made while `COUNTING` is set.
 struct Counting;
@@ -88,8 +89,35 @@ fn a_warmed_up_step_allocates_nothing() {
     .unwrap();
     let mut world = spreading.build().unwrap();
     let spreading_allocations = allocations(&mut world, 10, 50);
+    // A game that sets every sphere's velocity, force and position each frame: no allocation
+    // either (each change used to be checked on a copy of the sphere's description, name and
+    // all: 300 allocations here).
+    let mut world = World::new(Settings::default());
+    let ids: Vec<BodyId> = (0..100)
+        .map(|i| {
+            let desc = SphereDesc::new(0.1)
+                .at(DVec3::X * f64::from(i))
+                .named(format!("ball {i}"));
+            world.add_sphere(desc).unwrap()
+        })
+        .collect();
+    ALLOCATIONS.store(0, Ordering::Relaxed);
+    COUNTING.store(true, Ordering::Relaxed);
+    for &id in &ids {
+        let position = world.body(id).unwrap().position();
+        world.set_velocity(id, DVec3::X).unwrap();
+        world.set_force(id, DVec3::Y).unwrap();
+        world.set_position(id, position + DVec3::Z).unwrap();
+    }
+    COUNTING.store(false, Ordering::Relaxed);
+    let setter_allocations = ALLOCATIONS.load(Ordering::Relaxed);
     assert_eq!(
-        (shower_allocations, gas_allocations, spreading_allocations),
-        (0, 0, 0)
+        (
+            shower_allocations,
+            gas_allocations,
+            spreading_allocations,
+            setter_allocations
+        ),
+        (0, 0, 0, 0)
     );
 }

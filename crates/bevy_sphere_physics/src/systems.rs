@@ -7,7 +7,7 @@ use bevy::ecs::entity_disabling::Disabled;
 use bevy::ecs::system::SystemChangeTick;
 use bevy::math::DVec3;
 use bevy::prelude::*;
-use sphere_physics::{Body, SphereDesc, Tether, WorldError};
+use sphere_physics::{Body, BodyId, SphereDesc, Tether, WorldError};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereHit, SphereRejected};
@@ -128,16 +128,37 @@ type SphereQueryItem<'a> = <SphereQuery<'a> as bevy::ecs::query::QueryData>::Ite
 /// Whether the body still matches its components (exactly: the plugin writes the core's own
 /// values back, so any difference is a change made by the game).
 fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
-    let (_, sphere, _, position, velocity, density, restitution, force, fixed, tether, _, _, _) =
-        item;
+    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _) = item;
     position.is_none_or(|p| p.0 == body.position())
         && velocity.is_none_or(|v| v.0 == body.velocity())
-        && sphere.radius == body.radius()
+        && force.map_or(DVec3::ZERO, |f| f.0) == body.force()
+        && same_shape(body, item, options)
+}
+
+/// Whether the body's radius, density, restitution, fixedness and string still match its
+/// components: if so, only its position, velocity or force can have changed.
+fn same_shape(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
+    let (_, sphere, _, _, _, density, restitution, _, fixed, tether, _, _, _) = item;
+    sphere.radius == body.radius()
         && density.copied().unwrap_or_default().0 == body.density()
         && restitution.map_or(options.restitution, |r| r.0) == body.restitution()
-        && force.map_or(DVec3::ZERO, |f| f.0) == body.force()
         && *fixed == body.is_fixed()
         && tether.map(|t| (t.anchor, t.length)) == body.desc().tether.map(|t| (t.anchor, t.length))
+}
+
+/// A game steering a sphere (its velocity, force or position set every step): those set in
+/// the core one by one, with no new description (and no name formatted for it). `false` if
+/// one is refused: the caller then rebuilds the whole description, which reports it.
+fn steer(world: &mut sphere_physics::World, id: BodyId, item: &SphereQueryItem) -> bool {
+    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _) = item;
+    let Some(body) = world.body(id) else {
+        return false;
+    };
+    let (p, v, f) = (body.position(), body.velocity(), body.force());
+    let force = force.map_or(DVec3::ZERO, |f| f.0);
+    position.is_none_or(|wanted| wanted.0 == p || world.set_position(id, wanted.0).is_ok())
+        && velocity.is_none_or(|wanted| wanted.0 == v || world.set_velocity(id, wanted.0).is_ok())
+        && (force == f || world.set_force(id, force).is_ok())
 }
 
 /// [`SpherePhysicsSystems::Prepare`](crate::SpherePhysicsSystems::Prepare): removes despawned
@@ -215,6 +236,12 @@ pub(crate) fn prepare(
                 if matches(body, &item, &options) {
                     continue;
                 }
+                if same_shape(body, &item, &options) && steer(&mut physics.world, id, &item) {
+                    continue;
+                }
+                let Some(body) = physics.world.body(id) else {
+                    continue;
+                };
                 let desc = describe(&item, &options, Some(body));
                 if let Err(error) = physics.world.set_desc(id, desc.clone()) {
                     physics.world.remove_body(id);

@@ -379,6 +379,54 @@ fn regression_a_sphere_without_velocity_is_rejected_once() {
     assert_eq!(app.world().resource::<Rejections>().0.len(), 1);
 }
 
+/// A game steering a sphere every step (its velocity and force set before `Prepare`) gets
+/// exactly what the core alone gives with the same calls; a bad value among them is rejected
+/// once, naming its field, and the sphere joins again when it is fixed.
+#[test]
+fn steering_every_step_matches_the_core_and_bad_values_are_rejected() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    collect_rejections(&mut app);
+    let ball = app
+        .world_mut()
+        .spawn((SphereBody::new(0.5), SpherePosition(DVec3::ZERO)))
+        .id();
+    let mut core = sphere_physics::World::new(sphere_physics::Settings::default());
+    let id = core.add_sphere(SphereDesc::new(0.5)).unwrap();
+    run_steps(&mut app, 1);
+    core.step(STEP.as_secs_f64()).unwrap();
+    for k in 1..=20 {
+        let (v, f) = (DVec3::new(f64::from(k), 0.5, 0.0), DVec3::Y * f64::from(k));
+        app.world_mut().get_mut::<SphereVelocity>(ball).unwrap().0 = v;
+        app.world_mut().get_mut::<AppliedForce>(ball).unwrap().0 = f;
+        core.set_velocity(id, v).unwrap();
+        core.set_force(id, f).unwrap();
+        run_steps(&mut app, 1);
+        core.step(STEP.as_secs_f64()).unwrap();
+        let body = core.body(id).unwrap();
+        assert_eq!(position(&app, ball), body.position(), "step {k}");
+        assert_eq!(velocity(&app, ball), body.velocity(), "step {k}");
+    }
+    app.world_mut().get_mut::<AppliedForce>(ball).unwrap().0 = DVec3::X * f64::INFINITY;
+    run_steps(&mut app, 3);
+    let seen = &app.world().resource::<Rejections>().0;
+    assert_eq!(seen.len(), 1, "{seen:?}");
+    assert_eq!(seen[0].error.field, Field::Force);
+    assert!(
+        app.world()
+            .resource::<SpherePhysicsWorld>()
+            .body(ball)
+            .is_none()
+    );
+    app.world_mut().get_mut::<AppliedForce>(ball).unwrap().0 = DVec3::ZERO;
+    run_steps(&mut app, 1);
+    assert!(
+        app.world()
+            .resource::<SpherePhysicsWorld>()
+            .body(ball)
+            .is_some()
+    );
+}
+
 #[test]
 fn invalid_components_are_reported_and_left_out_until_fixed() {
     let mut app = app(SpherePhysicsPlugin::default());

@@ -85,35 +85,25 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         e => bad_input(format!("{}: {e}", args.scene.display())),
     })?;
     // An output that is the scene or the trace would overwrite it.
-    let same = |a: &std::path::Path, b: &std::path::Path| {
-        a == b
-            || a.canonicalize()
-                .ok()
-                .is_some_and(|a| b.canonicalize().ok() == Some(a))
+    let output = match &args.output {
+        Output::File(path) => Some(path.as_path()),
+        Output::Stdout => None,
     };
-    if let Output::File(path) = &args.output {
-        if same(path, &args.scene) {
-            return Err(bad_input(format!(
-                "--output {}: is the scene file itself",
-                path.display()
-            )));
-        }
-        if let Some((trace, _)) = &args.trace
-            && same(path, trace)
+    let trace = args.trace.as_ref().map(|(path, _)| path.as_path());
+    let scene_file = Some(args.scene.as_path());
+    for (flag, file, other, what) in [
+        ("--output", output, scene_file, "is the scene file itself"),
+        ("--output", output, trace, "is the --trace file too"),
+        ("--trace", trace, scene_file, "is the scene file itself"),
+    ] {
+        if let (Some(a), Some(b)) = (file, other)
+            && (a == b
+                || a.canonicalize()
+                    .ok()
+                    .is_some_and(|a| b.canonicalize().ok() == Some(a)))
         {
-            return Err(bad_input(format!(
-                "--output {}: is the --trace file too",
-                path.display()
-            )));
+            return Err(bad_input(format!("{flag} {}: {what}", a.display())));
         }
-    }
-    if let Some((trace, _)) = &args.trace
-        && same(trace, &args.scene)
-    {
-        return Err(bad_input(format!(
-            "--trace {}: is the scene file itself",
-            trace.display()
-        )));
     }
     if let Output::File(path) = &args.output
         && path.is_dir()

@@ -273,11 +273,6 @@ impl Prepared {
             plan,
         })
     }
-
-    /// Steps the run will take.
-    pub fn planned_steps(&self) -> u64 {
-        self.plan.total()
-    }
 }
 
 /// Builds the scene's world with `playback`'s overrides and plays it.

@@ -114,11 +114,30 @@ pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64, profile: bool) -> Me
     }
 }
 
-/// Steps `scene` with rapier3d 0.36: one step of `dt` untimed, then `steps` steps, each
-/// timed; CCD on or off, single-threaded,
-/// `length_unit` set to the small spheres' diameter as rapier's docs advise.
+/// How rapier is set up for a run.
 #[cfg(feature = "rapier")]
-pub fn measure_rapier(scene: &SceneDesc, steps: u32, dt: f64, ccd: bool) -> Measurement {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RapierSetting {
+    /// CCD on every dynamic body, or off for the whole world.
+    pub ccd: bool,
+    /// Solver iterations (rapier's default is 4; its docs suggest 1 or 2 where speed matters
+    /// more than accuracy).
+    pub iterations: usize,
+    /// `length_unit`. rapier 0.36's docs describe it as how many world units make a metre
+    /// (1.0 for scenes in metres, like these); it scales rapier's tolerances, and the
+    /// spheres' diameter (0.1) made rapier 2.3x to 2.7x faster on these scenes than 1.0.
+    pub length_unit: f64,
+}
+
+/// Steps `scene` with rapier3d 0.36: one step of `dt` untimed, then `steps` steps, each
+/// timed, single-threaded, as `setting` says.
+#[cfg(feature = "rapier")]
+pub fn measure_rapier(
+    scene: &SceneDesc,
+    steps: u32,
+    dt: f64,
+    setting: RapierSetting,
+) -> Measurement {
     use rapier_peer::{RapierConfig, RapierSphere, RapierWorld};
     let spheres: Vec<RapierSphere> = scene
         .sphere_descs()
@@ -129,9 +148,9 @@ pub fn measure_rapier(scene: &SceneDesc, steps: u32, dt: f64, ccd: bool) -> Meas
     let config = RapierConfig {
         gravity: scene.gravity,
         dt,
-        ccd,
-        length_unit: 2.0 * scenes::RADIUS,
-        solver_iterations: 4,
+        ccd: setting.ccd,
+        length_unit: setting.length_unit,
+        solver_iterations: setting.iterations,
     };
     let mut world = RapierWorld::new(&spheres, &config);
     let kinetic_before = world.kinetic_energy();

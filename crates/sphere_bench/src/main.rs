@@ -3,6 +3,7 @@
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
 //!         [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases]
+//!         [--rapier-iterations 4] [--rapier-length-unit 0.1]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step), then
 //! times each of `--steps` steps. With `--repeat N` each engine runs each scene N times, the
@@ -12,6 +13,10 @@
 //!
 //! With `--phases` our engine also times its step's phases (`World::set_profiling`), and a
 //! second table gives each phase's ns per sphere per step in the fastest run.
+//!
+//! rapier's solver iterations (default 4, rapier's own default) and `length_unit` (default
+//! 0.1, the spheres' diameter: 1.0, rapier's default for metres, made it 2.3x to 2.7x
+//! slower here) can be changed to look for its fastest setting.
 
 use std::io::Write;
 
@@ -25,6 +30,12 @@ struct Options {
     scenes: Vec<String>,
     repeat: u32,
     phases: bool,
+    /// rapier's solver iterations.
+    #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
+    rapier_iterations: usize,
+    /// rapier's `length_unit`.
+    #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
+    rapier_length_unit: f64,
 }
 
 fn parse() -> Result<Options, String> {
@@ -34,6 +45,8 @@ fn parse() -> Result<Options, String> {
         scenes: vec!["shower".into(), "gas".into()],
         repeat: 1,
         phases: false,
+        rapier_iterations: 4,
+        rapier_length_unit: 2.0 * scenes::RADIUS,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut it = args.iter();
@@ -71,9 +84,23 @@ fn parse() -> Result<Options, String> {
                 }
             }
             "--phases" => options.phases = true,
+            "--rapier-iterations" => {
+                options.rapier_iterations = value()?
+                    .parse()
+                    .ok()
+                    .filter(|&n| n > 0)
+                    .ok_or("--rapier-iterations needs a positive integer")?
+            }
+            "--rapier-length-unit" => {
+                options.rapier_length_unit = value()?
+                    .parse()
+                    .ok()
+                    .filter(|&u: &f64| u.is_finite() && u > 0.0)
+                    .ok_or("--rapier-length-unit needs a positive number")?
+            }
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases] [--rapier-iterations 4] [--rapier-length-unit 0.1]"
                 );
                 std::process::exit(0);
             }
@@ -114,6 +141,10 @@ fn main() {
     );
     if rapier {
         println!(
+            "rapier: {} solver iterations, length_unit {}.\n",
+            options.rapier_iterations, options.rapier_length_unit
+        );
+        println!(
             "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before | rapier KE after/before | our collisions, tests /sphere/step |"
         );
         println!("|---|---|---|---|---|---|---|---|---|---|");
@@ -141,9 +172,20 @@ fn main() {
                 );
                 #[cfg(feature = "rapier")]
                 {
-                    let rapier = sphere_bench::measure_rapier;
-                    keep_faster(&mut ccd, rapier(&scene, options.steps, DT, true));
-                    keep_faster(&mut plain, rapier(&scene, options.steps, DT, false));
+                    let rapier = |ccd| {
+                        sphere_bench::measure_rapier(
+                            &scene,
+                            options.steps,
+                            DT,
+                            sphere_bench::RapierSetting {
+                                ccd,
+                                iterations: options.rapier_iterations,
+                                length_unit: options.rapier_length_unit,
+                            },
+                        )
+                    };
+                    keep_faster(&mut ccd, rapier(true));
+                    keep_faster(&mut plain, rapier(false));
                 }
             }
             let ours = ours.expect("at least one run");

@@ -9,7 +9,9 @@ pub struct Series {
     pub name: String,
     /// CSS colour.
     pub colour: &'static str,
-    /// Points (x, y), both > 0 (smaller values are drawn at the floor).
+    /// Points (x, y). An x that is not a positive finite number, or a y that is not finite (a
+    /// failed run), is left out of the plot and counted in the legend; a y at or below
+    /// [`FLOOR`] (an exact answer) is drawn on the floor as a hollow circle.
     pub points: Vec<(f64, f64)>,
 }
 
@@ -30,8 +32,13 @@ const LEFT: f64 = 62.0;
 const RIGHT: f64 = 12.0;
 const TOP: f64 = 28.0;
 const BOTTOM: f64 = 44.0;
-/// Errors below this are drawn at it (an exact answer has error 0).
+/// Errors below this are drawn at it, hollow (an exact answer has error 0).
 pub const FLOOR: f64 = 1e-16;
+
+/// Whether a point can be drawn on log-log axes.
+fn drawable(&(x, y): &(f64, f64)) -> bool {
+    x.is_finite() && x > 0.0 && y.is_finite()
+}
 
 fn decades(values: impl Iterator<Item = f64>) -> (i32, i32) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -47,11 +54,13 @@ fn decades(values: impl Iterator<Item = f64>) -> (i32, i32) {
 }
 
 fn panel(out: &mut String, p: &Panel, ox: f64, oy: f64) {
-    let xs = p.series.iter().flat_map(|s| s.points.iter().map(|q| q.0));
-    let ys = p
-        .series
-        .iter()
-        .flat_map(|s| s.points.iter().map(|q| q.1.max(FLOOR)));
+    let drawn = || {
+        p.series
+            .iter()
+            .flat_map(|s| s.points.iter().filter(|q| drawable(q)))
+    };
+    let xs = drawn().map(|q| q.0);
+    let ys = drawn().map(|q| q.1.max(FLOOR));
     let ((x0, x1), (y0, y1)) = (decades(xs), decades(ys));
     let (pw, ph) = (W - LEFT - RIGHT, H - TOP - BOTTOM);
     let sx = |x: f64| ox + LEFT + (x.log10() - f64::from(x0)) / f64::from(x1 - x0) * pw;
@@ -112,6 +121,7 @@ fn panel(out: &mut String, p: &Panel, ox: f64, oy: f64) {
         let path: Vec<String> = s
             .points
             .iter()
+            .filter(|q| drawable(q))
             .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
             .collect();
         let _ = writeln!(
@@ -120,15 +130,22 @@ fn panel(out: &mut String, p: &Panel, ox: f64, oy: f64) {
             path.join(" "),
             s.colour
         );
-        for &(x, y) in &s.points {
+        for &(x, y) in s.points.iter().filter(|q| drawable(q)) {
+            let fill = if y > FLOOR { s.colour } else { "white" };
             let _ = writeln!(
                 out,
-                r#"<circle cx="{:.1}" cy="{:.1}" r="2.5" fill="{}"/>"#,
+                r#"<circle cx="{:.1}" cy="{:.1}" r="2.5" fill="{fill}" stroke="{}"/>"#,
                 sx(x),
                 sy(y),
                 s.colour
             );
         }
+        let failed = s.points.iter().filter(|q| !drawable(q)).count();
+        let name = if failed > 0 {
+            format!("{} ({failed} failed, not drawn)", s.name)
+        } else {
+            s.name.clone()
+        };
         let (lx, ly) = (ox + LEFT + pw - 110.0, oy + TOP + 12.0 + 12.0 * k as f64);
         let _ = writeln!(
             out,
@@ -137,7 +154,7 @@ fn panel(out: &mut String, p: &Panel, ox: f64, oy: f64) {
             s.colour,
             lx + 12.0,
             ly,
-            s.name
+            name
         );
     }
 }

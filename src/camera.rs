@@ -101,9 +101,12 @@ fn orbit(
     ui: Res<LabUi>,
     mut egui: EguiContexts,
 ) {
-    let egui_wants_pointer = egui
-        .ctx_mut()
-        .is_ok_and(|ctx| ctx.egui_wants_pointer_input() || ctx.is_pointer_over_egui());
+    let (egui_wants_pointer, egui_wants_keys) = egui.ctx_mut().map_or((false, false), |ctx| {
+        (
+            ctx.egui_wants_pointer_input() || ctx.is_pointer_over_egui(),
+            ctx.egui_wants_keyboard_input(),
+        )
+    });
     let mut turn = Vec2::ZERO;
     let mut zoom = 0.0;
     if !egui_wants_pointer {
@@ -115,7 +118,8 @@ fn orbit(
             MouseScrollUnit::Pixel => scroll.delta.y * 0.002,
         };
     }
-    if !ui.chooser_open {
+    // The keys wait while the chooser is open or an egui text field has the keyboard.
+    if !ui.chooser_open && !egui_wants_keys {
         let rate = time.delta_secs() * 1.5;
         let axis = |neg, pos| f32::from(keys.pressed(pos)) - f32::from(keys.pressed(neg));
         turn.x -= axis(KeyCode::ArrowLeft, KeyCode::ArrowRight) * rate;

@@ -8,7 +8,7 @@ use bevy::state::state::StateTransitionEvent;
 use bevy_sphere_physics::prelude::*;
 
 use crate::LabSystems;
-use crate::scenes::{ActiveScene, LabPersistent};
+use crate::scenes::{ActiveScene, LabPersistent, LabScenes};
 use crate::screenshot::{FrameCaptured, RenderReady, ScreenshotRequested, ScreenshotStatus};
 use bevy::render::render_resource::PipelineCache;
 use bevy::render::{MainWorld, RenderApp};
@@ -249,10 +249,45 @@ fn place_strings(
 }
 
 /// The box a scene's camera and ground are fitted to: the moving spheres and the anchors of
-/// their strings, and the fixed spheres no larger than twice that box (a dome, not a planet
-/// used as the ground, nor the walls of a box). `None` without spheres.
+/// their strings, the fixed spheres no larger than twice that box (a dome, not a planet
+/// used as the ground, nor the walls of a box), and down to the top of the floor under them
+/// (see [`floor_under`]), if any. `None` without spheres.
 pub fn scene_bounds<'a>(
     spheres: impl Iterator<Item = (Vec3, f32, bool, Option<Vec3>)> + Clone + 'a,
+) -> Option<(Vec3, Vec3)> {
+    let (mut low, high) = bounds_above_floor(spheres.clone())?;
+    if let Some((top, _)) = floor_under(spheres, low, high) {
+        low.y = low.y.min(top);
+    }
+    Some((low, high))
+}
+
+/// The floor under a scene's box `low`..`high`, as its top's height under the box's centre
+/// and its radius: the highest fixed sphere too large to be framed (a planet used as the
+/// ground) that lies below the box and at most four box sizes under it. A scene's spheres
+/// fall onto it, so the camera frames it, and it is the ground.
+pub fn floor_under(
+    spheres: impl Iterator<Item = (Vec3, f32, bool, Option<Vec3>)>,
+    low: Vec3,
+    high: Vec3,
+) -> Option<(f32, f32)> {
+    let extent = (high - low).max_element().max(1.0);
+    let limit = 2.0 * extent;
+    let centre = (low + high) / 2.0;
+    spheres
+        .filter(|&(_, r, fixed, _)| fixed && r > limit && r.is_finite())
+        .filter_map(|(c, r, _, _)| {
+            let across = Vec2::new(centre.x - c.x, centre.z - c.z).length_squared();
+            let top = c.y + (r * r - across).max(0.0).sqrt();
+            (across < r * r && top <= low.y + 1e-3 * extent && top >= low.y - 4.0 * extent)
+                .then_some((top, r))
+        })
+        .reduce(|a, b| if b.0 > a.0 { b } else { a })
+}
+
+/// [`scene_bounds`] without the floor.
+fn bounds_above_floor(
+    spheres: impl Iterator<Item = (Vec3, f32, bool, Option<Vec3>)> + Clone,
 ) -> Option<(Vec3, Vec3)> {
     let mut low = Vec3::splat(f32::INFINITY);
     let mut high = Vec3::splat(f32::NEG_INFINITY);
@@ -315,11 +350,16 @@ fn rod(assets: &LabAssets, from: Vec3, to: Vec3, width: f32) -> impl Bundle {
 }
 
 /// On entering a scene: the ground under its spheres and, if it has tethers, a frame that
-/// holds the anchors.
+/// holds the anchors. The ground is the floor the spheres fall onto (a fixed sphere too large
+/// to frame, see [`floor_under`]), drawn as the sphere it is, or as a plane at its top when too
+/// large to draw; without a floor, a plane a little below the spheres only where none falls
+/// freely (no gravity, or every moving sphere on a string), since a falling sphere would pass
+/// through it.
 fn build_stage(
     mut commands: Commands,
     assets: Res<LabAssets>,
     state: Res<State<ActiveScene>>,
+    scenes: Res<LabScenes>,
     spheres: Query<SphereExtent>,
 ) {
     if *state.get() == ActiveScene::None {
@@ -343,14 +383,39 @@ fn build_stage(
     }
 
     let extent = (high - low).max_element().max(1.0);
-    let ground = low.y - 0.25 * extent;
+    // The floor the spheres fall onto is the ground: drawn as the sphere it is, or, if too
+    // large to draw (a wall), as a plane at its top. Without one, a plane a little below the
+    // spheres.
+    let floor = floor_under(
+        spheres
+            .iter()
+            .map(|(t, b, fixed, _)| (t.translation, b.radius as f32, fixed, None)),
+        low,
+        high,
+    );
+    let ground = match floor {
+        Some((top, _)) => top,
+        None => low.y - 0.25 * extent,
+    };
+    let floor_drawn = floor.is_some_and(|(_, r)| f64::from(r) <= WALL_RADIUS);
+    // Whether a sphere falls freely: under gravity, neither fixed nor on a string.
+    let falls = state
+        .get()
+        .id()
+        .and_then(|id| scenes.get(id))
+        .is_some_and(|scene| scene.settings.gravity != DVec3::ZERO)
+        && spheres
+            .iter()
+            .any(|(_, _, fixed, tether)| !fixed && tether.is_none());
     let centre = (low + high) / 2.0;
-    commands.spawn((
-        scope.clone(),
-        Mesh3d(assets.ground.clone()),
-        MeshMaterial3d(assets.floor.clone()),
-        Transform::from_xyz(centre.x, ground, centre.z).with_scale(Vec3::splat(extent * 8.0)),
-    ));
+    if !floor_drawn && (floor.is_some() || !falls) {
+        commands.spawn((
+            scope.clone(),
+            Mesh3d(assets.ground.clone()),
+            MeshMaterial3d(assets.floor.clone()),
+            Transform::from_xyz(centre.x, ground, centre.z).with_scale(Vec3::splat(extent * 8.0)),
+        ));
+    }
     if anchors.is_empty() {
         return;
     }

@@ -809,3 +809,35 @@ fn regression_screenshot_names_follow_the_order_taken() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Review of 2026-12-01: a ball dropped onto a planet-sized floor sphere (settling_ball,
+/// light_on_heavy) was framed from its starting place only, and the ground was drawn there,
+/// above the real floor: the ball fell through the drawn ground and came to rest out of sight.
+#[cfg(feature = "render")]
+#[test]
+fn a_scene_over_a_planet_sized_floor_is_framed_down_to_the_floor() {
+    use sphere_lab::render::{floor_under, scene_bounds};
+    // settling_ball: a ball of radius 0.5 at height 3 over a floor sphere of radius 50 whose
+    // top is at 0.
+    let spheres = [
+        (Vec3::new(0.0, 3.0, 0.0), 0.5, false, None),
+        (Vec3::new(0.0, -50.0, 0.0), 50.0, true, None),
+    ];
+    let (low, high) = scene_bounds(spheres.into_iter()).expect("spheres");
+    assert_eq!(low.y, 0.0, "framed down to the floor's top");
+    assert_eq!(high.y, 3.5);
+    let (top, radius) = floor_under(spheres.into_iter(), low, high).expect("a floor");
+    assert_eq!((top, radius), (0.0, 50.0));
+    // A planet far below (more than four box sizes) is not the scene's floor, nor a sphere
+    // to the side of the spheres, nor one above them.
+    for far in [
+        (Vec3::new(0.0, -100.0, 0.0), 50.0, true, None),
+        (Vec3::new(200.0, -50.0, 0.0), 50.0, true, None),
+        (Vec3::new(0.0, 60.0, 0.0), 50.0, true, None),
+    ] {
+        let spheres = [(Vec3::new(0.0, 3.0, 0.0), 0.5, false, None), far];
+        let (low, high) = scene_bounds(spheres.into_iter()).expect("spheres");
+        assert_eq!(low.y, 2.5, "{far:?}");
+        assert_eq!(floor_under(spheres.into_iter(), low, high), None, "{far:?}");
+    }
+}

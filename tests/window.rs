@@ -189,6 +189,7 @@ fn lab_and_examples_in_a_real_window() {
         ("density_collisions", "density_collisions"),
         ("applied_forces", "applied_forces"),
         ("sphere_shower", "sphere_shower"),
+        ("touching_cradle", "touching_cradle"),
         ("lab", ""),
     ] {
         let program = example(name);
@@ -201,6 +202,19 @@ fn lab_and_examples_in_a_real_window() {
             assert!(blue > 500, "{name}: blue {blue}");
         }
     }
+
+    // A ball that falls onto a planet-sized floor sphere is still in the picture once it has
+    // come to rest (the camera framed its starting place only, and the ball left the picture).
+    let out = unattended(
+        lab,
+        &["--scene", "settling_ball"],
+        "2.5",
+        &temp_dir("settling"),
+    );
+    let image = screenshot(&out);
+    assert_eq!(scene_shown(&out), "settling_ball");
+    let (blue, ..) = hue_counts(&image);
+    assert!(blue > 2000, "the resting ball: blue {blue}");
 
     // A folder that cannot be made: the failure is reported (exit code 1 with --exit).
     let blocker = temp_dir("blocked");

@@ -501,9 +501,11 @@ pub fn tunnelling_speeds() -> impl Iterator<Item = f64> {
     (0..=6).flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
 }
 
-/// A sphere of radius 0.01 fired at another fixed one of radius 0.01 from 1 m away: the lowest
-/// of [`tunnelling_speeds`] at which the engine misses the collision (or its state stops being
-/// finite), if any.
+/// A sphere of radius 0.01 fired at another fixed one of radius 0.01 from 1 m away (elastic):
+/// the lowest of [`tunnelling_speeds`] at which the engine fails to bounce it back, if any. It
+/// must come back out on its own side, moving away, and get halfway back to where it started
+/// within twenty times the time it needs to get there (and 20 steps): a sphere that passes
+/// through the target, or stays caught in it, or whose state stops being finite, has missed.
 pub fn tunnelling_speed(make: &mut dyn FnMut(&Scene) -> Box<dyn Engine>, dt: f64) -> Option<f64> {
     for speed in tunnelling_speeds() {
         let scene = Scene::new(
@@ -516,18 +518,21 @@ pub fn tunnelling_speed(make: &mut dyn FnMut(&Scene) -> Box<dyn Engine>, dt: f64
             ],
         );
         let mut engine = make(&scene);
-        // Until it bounces back or is past the target (at most twenty times the time it needs
-        // to get there, and 20 steps).
         let limit = ((20.0 / speed) / dt).ceil() as u64 + 20;
+        let mut back = false;
         for _ in 0..limit {
             engine.step();
             let (p, v) = (engine.position(0), engine.velocity(0));
-            if !(p.is_finite() && v.is_finite()) || p.x > 0.02 {
-                return Some(speed);
-            }
-            if v.x < 0.0 {
+            if !(p.is_finite() && v.is_finite()) {
                 break;
             }
+            if p.x < -0.5 && v.x < 0.0 {
+                back = true;
+                break;
+            }
+        }
+        if !back {
+            return Some(speed);
         }
     }
     None

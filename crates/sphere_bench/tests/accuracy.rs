@@ -184,3 +184,63 @@ fn the_plot_leaves_out_failed_runs_and_draws_exact_answers_hollow() {
     assert_eq!(svg.matches(r##"fill="white" stroke="#123456""##).count(), 1);
     assert!(!svg.contains("NaN") && !svg.contains("inf"), "{svg}");
 }
+
+/// A striker (sphere 0) moving freely along x, turned round by `turn` after each step.
+struct Striker {
+    p: DVec3,
+    v: DVec3,
+    dt: f64,
+    turn: fn(&mut DVec3, &mut DVec3),
+}
+
+impl Engine for Striker {
+    fn step(&mut self) {
+        self.p += self.v * self.dt;
+        (self.turn)(&mut self.p, &mut self.v);
+    }
+    fn count(&self) -> usize {
+        2
+    }
+    fn position(&self, i: usize) -> DVec3 {
+        if i == 0 { self.p } else { DVec3::ZERO }
+    }
+    fn velocity(&self, i: usize) -> DVec3 {
+        if i == 0 { self.v } else { DVec3::ZERO }
+    }
+}
+
+/// Review of 2026-12-01: the tunnelling test took a striker moving back (negative velocity)
+/// as caught wherever it was; rapier with CCD pushed a fast striker out on the far side of the
+/// target, or left it caught inside, turning round every step, and was reported as catching
+/// every speed. A striker must come back out on its own side, moving away.
+#[test]
+fn a_striker_that_passes_through_or_is_caught_in_the_target_has_missed() {
+    let dt = 1.0 / 60.0;
+    let engine = |turn: fn(&mut DVec3, &mut DVec3)| {
+        move |scene: &Scene| -> Box<dyn Engine> {
+            Box::new(Striker {
+                p: scene.spheres[0].position,
+                v: scene.spheres[0].velocity,
+                dt,
+                turn,
+            })
+        }
+    };
+    // Passes straight through.
+    assert_eq!(tunnelling_speed(&mut engine(|_, _| {}), dt), Some(1.0));
+    // Caught: turned round whenever it crosses the target's centre.
+    let caught = |p: &mut DVec3, v: &mut DVec3| {
+        if p.x.signum() == v.x.signum() && p.x.abs() < 0.1 {
+            *v = -*v;
+        }
+    };
+    assert_eq!(tunnelling_speed(&mut engine(caught), dt), Some(1.0));
+    // Reflected at contact: never missed.
+    let bounce = |p: &mut DVec3, v: &mut DVec3| {
+        if p.x > -0.02 && v.x > 0.0 {
+            p.x = -0.04 - p.x;
+            *v = -*v;
+        }
+    };
+    assert_eq!(tunnelling_speed(&mut engine(bounce), dt), None);
+}

@@ -127,6 +127,9 @@ pub struct RapierSetting {
     /// (1.0 for scenes in metres, like these); it scales rapier's tolerances, and the
     /// spheres' diameter (0.1) made rapier 2.3x to 2.7x faster on these scenes than 1.0.
     pub length_unit: f64,
+    /// The gas's wall spheres as rapier half-spaces (see
+    /// [`rapier_peer::RapierConfig::flat_walls`]).
+    pub flat_walls: bool,
 }
 
 /// Steps `scene` with rapier3d 0.36: one step of `dt` untimed, then `steps` steps, each
@@ -151,6 +154,7 @@ pub fn measure_rapier(
         ccd: setting.ccd,
         length_unit: setting.length_unit,
         solver_iterations: setting.iterations,
+        flat_walls: setting.flat_walls,
     };
     let mut world = RapierWorld::new(&spheres, &config);
     let kinetic_before = world.kinetic_energy();

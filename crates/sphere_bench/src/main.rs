@@ -3,7 +3,7 @@
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
 //!         [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases]
-//!         [--rapier-iterations 4] [--rapier-length-unit 0.1]
+//!         [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step), then
 //! times each of `--steps` steps. With `--repeat N` each engine runs each scene N times, the
@@ -16,7 +16,8 @@
 //!
 //! rapier's solver iterations (default 4, rapier's own default) and `length_unit` (default
 //! 0.1, the spheres' diameter: 1.0, rapier's default for metres, made it 2.3x to 2.7x
-//! slower here) can be changed to look for its fastest setting.
+//! slower here) can be changed to look for its fastest setting, and `--rapier-flat-walls`
+//! gives rapier the gas's six wall spheres as half-spaces, its own shape for a wall.
 
 use std::io::Write;
 
@@ -36,6 +37,9 @@ struct Options {
     /// rapier's `length_unit`.
     #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
     rapier_length_unit: f64,
+    /// The gas's walls as rapier half-spaces.
+    #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
+    rapier_flat_walls: bool,
 }
 
 fn parse() -> Result<Options, String> {
@@ -47,6 +51,7 @@ fn parse() -> Result<Options, String> {
         phases: false,
         rapier_iterations: 4,
         rapier_length_unit: 2.0 * scenes::RADIUS,
+        rapier_flat_walls: false,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut it = args.iter();
@@ -98,9 +103,10 @@ fn parse() -> Result<Options, String> {
                     .filter(|&u: &f64| u.is_finite() && u > 0.0)
                     .ok_or("--rapier-length-unit needs a positive number")?
             }
+            "--rapier-flat-walls" => options.rapier_flat_walls = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases] [--rapier-iterations 4] [--rapier-length-unit 0.1]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas] [--repeat 1] [--phases] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
                 );
                 std::process::exit(0);
             }
@@ -141,8 +147,14 @@ fn main() {
     );
     if rapier {
         println!(
-            "rapier: {} solver iterations, length_unit {}.\n",
-            options.rapier_iterations, options.rapier_length_unit
+            "rapier: {} solver iterations, length_unit {}, walls as {}.\n",
+            options.rapier_iterations,
+            options.rapier_length_unit,
+            if options.rapier_flat_walls {
+                "half-spaces"
+            } else {
+                "balls"
+            }
         );
         println!(
             "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before | rapier KE after/before | our collisions, tests /sphere/step |"
@@ -181,6 +193,7 @@ fn main() {
                                 ccd,
                                 iterations: options.rapier_iterations,
                                 length_unit: options.rapier_length_unit,
+                                flat_walls: options.rapier_flat_walls,
                             },
                         )
                     };

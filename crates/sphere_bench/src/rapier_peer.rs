@@ -55,7 +55,16 @@ pub struct RapierConfig {
     pub length_unit: f64,
     /// Rapier's `IntegrationParameters::num_solver_iterations` (values below 1 are raised to 1).
     pub solver_iterations: usize,
+    /// Fixed spheres at least [`WALL_RATIO`] times the smallest dynamic sphere's radius (the
+    /// gas's walls) become rapier half-spaces, tangent where the sphere is nearest the dynamic
+    /// spheres' centroid: rapier's own shape for a wall, instead of a ball whose centre, 10⁴ m
+    /// away, `f32` places only to a millimetre.
+    pub flat_walls: bool,
 }
+
+/// How many times the smallest dynamic sphere a fixed sphere's radius must be to be a wall
+/// (see [`RapierConfig::flat_walls`]).
+pub const WALL_RATIO: f64 = 1000.0;
 
 /// A rapier3d world holding the sphere scene, with everything `PhysicsPipeline::step` needs.
 pub struct RapierWorld {
@@ -103,8 +112,37 @@ impl RapierWorld {
         let mut bodies = RigidBodySet::new();
         let mut colliders = ColliderSet::new();
         let mut handles = Vec::with_capacity(spheres.len());
+        let dynamic = || spheres.iter().filter(|s| !s.fixed);
+        let smallest = dynamic().map(|s| s.radius).fold(f64::INFINITY, f64::min);
+        let count = dynamic().count().max(1) as f64;
+        let centroid = dynamic().fold([0.0; 3], |c, s| {
+            [0, 1, 2].map(|k| c[k] + s.position[k] / count)
+        });
 
         for sphere in spheres {
+            let wall = config.flat_walls && sphere.fixed && sphere.radius >= WALL_RATIO * smallest;
+            if wall {
+                // The plane tangent to the wall sphere where it is nearest the centroid.
+                let to_centroid = [0, 1, 2].map(|k| centroid[k] - sphere.position[k]);
+                let length = to_centroid.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let normal = to_centroid.map(|x| x / length);
+                let point = [0, 1, 2].map(|k| sphere.position[k] + normal[k] * sphere.radius);
+                let body = RigidBodyBuilder::fixed()
+                    .translation(to_vector(point))
+                    .build();
+                let handle = bodies.insert(body);
+                let collider = ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(
+                    to_vector(normal).normalize(),
+                ))
+                .restitution(sphere.restitution as Real)
+                .restitution_combine_rule(CoefficientCombineRule::Min)
+                .friction(0.0)
+                .friction_combine_rule(CoefficientCombineRule::Min)
+                .build();
+                colliders.insert_with_parent(collider, handle, &mut bodies);
+                handles.push(handle);
+                continue;
+            }
             let builder = if sphere.fixed {
                 RigidBodyBuilder::fixed()
             } else {

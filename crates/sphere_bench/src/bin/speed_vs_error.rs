@@ -105,6 +105,7 @@ mod peer {
                 ccd: true,
                 length_unit: 2.0 * smallest,
                 solver_iterations: iterations,
+                flat_walls: false,
             },
         ))
     }

@@ -248,26 +248,93 @@ fn place_strings(
     }
 }
 
-/// The box a scene's camera and ground are fitted to: the moving spheres and the anchors of
-/// their strings, the fixed spheres no larger than twice that box (a dome, not a planet
-/// used as the ground, nor the walls of a box), and down to the top of the floor under them
-/// (see [`floor_under`]), if any. `None` without spheres.
-pub fn scene_bounds<'a>(
-    spheres: impl Iterator<Item = (Vec3, f32, bool, Option<Vec3>)> + Clone + 'a,
-) -> Option<(Vec3, Vec3)> {
-    let (mut low, high) = bounds_above_floor(spheres.clone())?;
-    if let Some((top, _)) = floor_under(spheres, low, high) {
-        low.y = low.y.min(top);
-    }
-    Some((low, high))
+/// A sphere as the stage reads it: centre, radius, fixed, and its string's anchor if it hangs
+/// on one.
+pub type StageSphere = (Vec3, f32, bool, Option<Vec3>);
+
+/// How a scene's ground is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ground {
+    /// The floor the spheres fall onto is a fixed sphere small enough to draw: it is the
+    /// ground, its top under the scene at this height; no plane.
+    FloorSphere(f32),
+    /// A plane at this height: on the floor the spheres fall onto when that is too large to
+    /// draw (a wall), or a little below the spheres when nothing falls freely.
+    Plane(f32),
+    /// No ground: spheres fall freely (under gravity, not on strings) with no floor under them,
+    /// and would pass through a drawn one.
+    Open,
 }
 
-/// The floor under a scene's box `low`..`high`, as its top's height under the box's centre
-/// and its radius: the highest fixed sphere too large to be framed (a planet used as the
-/// ground) that lies below the box and at most four box sizes under it. A scene's spheres
-/// fall onto it, so the camera frames it, and it is the ground.
+/// Where a scene is framed and how its ground is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stage {
+    /// The box the camera frames: the moving spheres and the anchors of their strings, the
+    /// fixed spheres no larger than twice that box (a dome, not a planet used as the ground,
+    /// nor the walls of a box), and down to the top of the floor under them.
+    pub low: Vec3,
+    /// The box's upper corner.
+    pub high: Vec3,
+    /// The floor under the scene (see [`floor_under`]): its top's height and its radius.
+    pub floor: Option<(f32, f32)>,
+    /// How the ground is drawn.
+    pub ground: Ground,
+}
+
+impl Stage {
+    /// The height a frame's legs stand at: the ground's, or a little below the spheres.
+    pub fn ground_height(&self) -> f32 {
+        match self.ground {
+            Ground::FloorSphere(y) | Ground::Plane(y) => y,
+            Ground::Open => self.low.y - 0.25 * (self.high - self.low).max_element().max(1.0),
+        }
+    }
+}
+
+/// The stage of a scene's spheres; `gravity` says whether anything falls. `None` without
+/// spheres.
+pub fn scene_stage(
+    spheres: impl Iterator<Item = StageSphere> + Clone,
+    gravity: bool,
+) -> Option<Stage> {
+    let (low, high) = bounds_above_floor(spheres.clone())?;
+    let floor = floor_under(spheres.clone(), low, high);
+    let falls = gravity
+        && spheres
+            .clone()
+            .any(|(_, _, fixed, anchor)| !fixed && anchor.is_none());
+    let extent = (high - low).max_element().max(1.0);
+    let ground = match floor {
+        Some((top, r)) if f64::from(r) <= WALL_RADIUS => Ground::FloorSphere(top),
+        Some((top, _)) => Ground::Plane(top),
+        None if falls => Ground::Open,
+        None => Ground::Plane(low.y - 0.25 * extent),
+    };
+    let mut framed_low = low;
+    if let Some((top, _)) = floor {
+        framed_low.y = framed_low.y.min(top);
+    }
+    Some(Stage {
+        low: framed_low,
+        high,
+        floor,
+        ground,
+    })
+}
+
+/// The box a scene's camera is fitted to ([`Stage::low`], [`Stage::high`]). `None` without
+/// spheres.
+pub fn scene_bounds(spheres: impl Iterator<Item = StageSphere> + Clone) -> Option<(Vec3, Vec3)> {
+    scene_stage(spheres, false).map(|stage| (stage.low, stage.high))
+}
+
+/// The floor under a scene's box `low`..`high` (the box of its moving spheres, before the
+/// floor is added), as its top's height under the box's centre and its radius: the highest
+/// fixed sphere too large to be framed (a planet used as the ground) that lies below the box
+/// and at most four box sizes under it. A scene's spheres fall onto it, so the camera frames
+/// it, and it is the ground.
 pub fn floor_under(
-    spheres: impl Iterator<Item = (Vec3, f32, bool, Option<Vec3>)>,
+    spheres: impl Iterator<Item = StageSphere>,
     low: Vec3,
     high: Vec3,
 ) -> Option<(f32, f32)> {
@@ -275,7 +342,7 @@ pub fn floor_under(
     let limit = 2.0 * extent;
     let centre = (low + high) / 2.0;
     spheres
-        .filter(|&(_, r, fixed, _)| fixed && r > limit && r.is_finite())
+        .filter(|&(c, r, fixed, _)| fixed && r > limit && r.is_finite() && c.is_finite())
         .filter_map(|(c, r, _, _)| {
             let across = Vec2::new(centre.x - c.x, centre.z - c.z).length_squared();
             let top = c.y + (r * r - across).max(0.0).sqrt();
@@ -285,10 +352,8 @@ pub fn floor_under(
         .reduce(|a, b| if b.0 > a.0 { b } else { a })
 }
 
-/// [`scene_bounds`] without the floor.
-fn bounds_above_floor(
-    spheres: impl Iterator<Item = (Vec3, f32, bool, Option<Vec3>)> + Clone,
-) -> Option<(Vec3, Vec3)> {
+/// The framed box without the floor.
+fn bounds_above_floor(spheres: impl Iterator<Item = StageSphere> + Clone) -> Option<(Vec3, Vec3)> {
     let mut low = Vec3::splat(f32::INFINITY);
     let mut high = Vec3::splat(f32::NEG_INFINITY);
     for (centre, r, fixed, anchor) in spheres.clone() {
@@ -323,16 +388,21 @@ pub type SphereExtent = (
     Option<&'static Tethered>,
 );
 
-/// [`scene_bounds`] of the spheres in a query.
-pub fn scene_bounds_of(spheres: &Query<SphereExtent>) -> Option<(Vec3, Vec3)> {
-    scene_bounds(spheres.iter().map(|(t, b, fixed, tether)| {
+/// The spheres of a query as the stage reads them.
+fn stage_spheres(spheres: &Query<SphereExtent>) -> impl Iterator<Item = StageSphere> + Clone {
+    spheres.iter().map(|(t, b, fixed, tether)| {
         (
             t.translation,
             b.radius as f32,
             fixed,
             tether.map(|t| t.anchor.as_vec3()),
         )
-    }))
+    })
+}
+
+/// [`scene_bounds`] of the spheres in a query.
+pub fn scene_bounds_of(spheres: &Query<SphereExtent>) -> Option<(Vec3, Vec3)> {
+    scene_bounds(stage_spheres(spheres))
 }
 
 /// A rod between two points.
@@ -349,12 +419,8 @@ fn rod(assets: &LabAssets, from: Vec3, to: Vec3, width: f32) -> impl Bundle {
     )
 }
 
-/// On entering a scene: the ground under its spheres and, if it has tethers, a frame that
-/// holds the anchors. The ground is the floor the spheres fall onto (a fixed sphere too large
-/// to frame, see [`floor_under`]), drawn as the sphere it is, or as a plane at its top when too
-/// large to draw; without a floor, a plane a little below the spheres only where none falls
-/// freely (no gravity, or every moving sphere on a string), since a falling sphere would pass
-/// through it.
+/// On entering a scene: the ground under its spheres (see [`Ground`]) and, if it has
+/// tethers, a frame that holds the anchors.
 fn build_stage(
     mut commands: Commands,
     assets: Res<LabAssets>,
@@ -366,7 +432,12 @@ fn build_stage(
         return;
     }
     let scope = DespawnOnExit(state.get().clone());
-    let Some((low, high)) = scene_bounds_of(&spheres) else {
+    let gravity = state
+        .get()
+        .id()
+        .and_then(|id| scenes.get(id))
+        .is_some_and(|scene| scene.settings.gravity != DVec3::ZERO);
+    let Some(stage) = scene_stage(stage_spheres(&spheres), gravity) else {
         return;
     };
     let mut anchors = Vec::new();
@@ -382,38 +453,16 @@ fn build_stage(
         }
     }
 
+    let (low, high) = (stage.low, stage.high);
     let extent = (high - low).max_element().max(1.0);
-    // The floor the spheres fall onto is the ground: drawn as the sphere it is, or, if too
-    // large to draw (a wall), as a plane at its top. Without one, a plane a little below the
-    // spheres.
-    let floor = floor_under(
-        spheres
-            .iter()
-            .map(|(t, b, fixed, _)| (t.translation, b.radius as f32, fixed, None)),
-        low,
-        high,
-    );
-    let ground = match floor {
-        Some((top, _)) => top,
-        None => low.y - 0.25 * extent,
-    };
-    let floor_drawn = floor.is_some_and(|(_, r)| f64::from(r) <= WALL_RADIUS);
-    // Whether a sphere falls freely: under gravity, neither fixed nor on a string.
-    let falls = state
-        .get()
-        .id()
-        .and_then(|id| scenes.get(id))
-        .is_some_and(|scene| scene.settings.gravity != DVec3::ZERO)
-        && spheres
-            .iter()
-            .any(|(_, _, fixed, tether)| !fixed && tether.is_none());
+    let ground = stage.ground_height();
     let centre = (low + high) / 2.0;
-    if !floor_drawn && (floor.is_some() || !falls) {
+    if let Ground::Plane(y) = stage.ground {
         commands.spawn((
             scope.clone(),
             Mesh3d(assets.ground.clone()),
             MeshMaterial3d(assets.floor.clone()),
-            Transform::from_xyz(centre.x, ground, centre.z).with_scale(Vec3::splat(extent * 8.0)),
+            Transform::from_xyz(centre.x, y, centre.z).with_scale(Vec3::splat(extent * 8.0)),
         ));
     }
     if anchors.is_empty() {

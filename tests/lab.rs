@@ -811,33 +811,82 @@ fn regression_screenshot_names_follow_the_order_taken() {
 }
 
 /// Review of 2026-12-01: a ball dropped onto a planet-sized floor sphere (settling_ball,
-/// light_on_heavy) was framed from its starting place only, and the ground was drawn there,
-/// above the real floor: the ball fell through the drawn ground and came to rest out of sight.
+/// light_on_heavy) was framed from its starting place only, and a ground plane was drawn
+/// there, above the real floor: the ball fell through the drawn ground and came to rest out
+/// of sight; the showers' spheres fell through a plane under their dome. Every scene file's
+/// stage: what is framed and how its ground is drawn.
 #[cfg(feature = "render")]
 #[test]
-fn a_scene_over_a_planet_sized_floor_is_framed_down_to_the_floor() {
-    use sphere_lab::render::{floor_under, scene_bounds};
-    // settling_ball: a ball of radius 0.5 at height 3 over a floor sphere of radius 50 whose
-    // top is at 0.
-    let spheres = [
-        (Vec3::new(0.0, 3.0, 0.0), 0.5, false, None),
-        (Vec3::new(0.0, -50.0, 0.0), 50.0, true, None),
-    ];
-    let (low, high) = scene_bounds(spheres.into_iter()).expect("spheres");
-    assert_eq!(low.y, 0.0, "framed down to the floor's top");
-    assert_eq!(high.y, 3.5);
-    let (top, radius) = floor_under(spheres.into_iter(), low, high).expect("a floor");
-    assert_eq!((top, radius), (0.0, 50.0));
-    // A planet far below (more than four box sizes) is not the scene's floor, nor a sphere
-    // to the side of the spheres, nor one above them.
+fn every_scene_file_gets_a_ground_its_spheres_do_not_fall_through() {
+    use sphere_lab::render::{Ground, scene_stage};
+    use sphere_physics::SceneDesc;
+    let mut seen = Vec::new();
+    for path in sphere_lab::scenes::scene_files(&scene_folder()) {
+        let id = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let desc = SceneDesc::load(&path).expect("the scene files load");
+        let spheres: Vec<_> = desc
+            .all_spheres()
+            .expect("the scene files' spheres")
+            .iter()
+            .map(|s| {
+                (
+                    DVec3::from_array(s.position).as_vec3(),
+                    s.radius as f32,
+                    s.fixed,
+                    s.tether.as_ref().map(|t| t.anchor.as_vec3()),
+                )
+            })
+            .collect();
+        let gravity = desc.gravity != [0.0; 3];
+        let stage = scene_stage(spheres.iter().copied(), gravity).expect("spheres");
+        let expected = match id.as_str() {
+            // Planets as the ground, drawn as the spheres they are, tops at 0.
+            "settling_ball" | "light_on_heavy" | "applied_forces" => Ground::FloorSphere(0.0),
+            // Rain past a dome, nothing under it.
+            "sphere_shower" | "stress_shower" => Ground::Open,
+            // Walls too large to draw: a plane on the bottom wall's face.
+            "gas_box" => Ground::Plane(-5.0),
+            // Nothing falls freely: a plane a little below the spheres.
+            _ => {
+                Ground::Plane(stage.low.y - 0.25 * (stage.high - stage.low).max_element().max(1.0))
+            }
+        };
+        assert_eq!(stage.ground, expected, "{id}");
+        if let Ground::FloorSphere(top) = stage.ground {
+            assert_eq!(stage.low.y, top, "{id}: framed down to the floor");
+        }
+        seen.push(id);
+    }
+    for id in [
+        "settling_ball",
+        "light_on_heavy",
+        "sphere_shower",
+        "gas_box",
+        "newtons_cradle",
+    ] {
+        assert!(
+            seen.iter().any(|s| s == id),
+            "{id} is among the scene files"
+        );
+    }
+}
+
+/// The floor must lie under the scene, and not too far below.
+#[cfg(feature = "render")]
+#[test]
+fn a_planet_beside_above_or_far_below_the_spheres_is_not_their_floor() {
+    use sphere_lab::render::{Ground, scene_stage};
+    let ball = (Vec3::new(0.0, 3.0, 0.0), 0.5, false, None);
     for far in [
         (Vec3::new(0.0, -100.0, 0.0), 50.0, true, None),
         (Vec3::new(200.0, -50.0, 0.0), 50.0, true, None),
         (Vec3::new(0.0, 60.0, 0.0), 50.0, true, None),
+        (Vec3::new(f32::NAN, -50.0, 0.0), 50.0, true, None),
+        (Vec3::new(0.0, -50.0, 0.0), f32::INFINITY, true, None),
     ] {
-        let spheres = [(Vec3::new(0.0, 3.0, 0.0), 0.5, false, None), far];
-        let (low, high) = scene_bounds(spheres.into_iter()).expect("spheres");
-        assert_eq!(low.y, 2.5, "{far:?}");
-        assert_eq!(floor_under(spheres.into_iter(), low, high), None, "{far:?}");
+        let stage = scene_stage([ball, far].into_iter(), true).expect("spheres");
+        assert_eq!(stage.floor, None, "{far:?}");
+        assert_eq!(stage.ground, Ground::Open, "{far:?}");
+        assert_eq!(stage.low.y, 2.5, "{far:?}");
     }
 }

@@ -51,14 +51,16 @@ pub struct RapierConfig {
     /// `false` turns CCD off for the world, including rapier's automatic CCD of fast bodies
     /// against fixed colliders (`max_ccd_substeps: 0`).
     pub ccd: bool,
-    /// Rapier's `IntegrationParameters::length_unit`: the typical object size.
+    /// Rapier's `IntegrationParameters::length_unit`, which scales its tolerances (0.36's docs:
+    /// how many world units make a metre; the benches use the spheres' diameter, faster).
     pub length_unit: f64,
     /// Rapier's `IntegrationParameters::num_solver_iterations` (values below 1 are raised to 1).
     pub solver_iterations: usize,
     /// Fixed spheres at least [`WALL_RATIO`] times the smallest dynamic sphere's radius (the
     /// gas's walls) become rapier half-spaces, tangent where the sphere is nearest the dynamic
     /// spheres' centroid: rapier's own shape for a wall, instead of a ball whose centre, 10⁴ m
-    /// away, `f32` places only to a millimetre.
+    /// away, `f32` places only to a millimetre. Any fixed sphere that large counts (a planet
+    /// used as a floor too), unless the centroid lies inside it (then it stays a ball).
     pub flat_walls: bool,
 }
 
@@ -120,11 +122,15 @@ impl RapierWorld {
         });
 
         for sphere in spheres {
-            let wall = config.flat_walls && sphere.fixed && sphere.radius >= WALL_RATIO * smallest;
+            // The plane tangent to a wall sphere where it is nearest the centroid.
+            let to_centroid = [0, 1, 2].map(|k| centroid[k] - sphere.position[k]);
+            let length = to_centroid.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let wall = config.flat_walls
+                && sphere.fixed
+                && sphere.radius >= WALL_RATIO * smallest
+                && length > sphere.radius
+                && length.is_finite();
             if wall {
-                // The plane tangent to the wall sphere where it is nearest the centroid.
-                let to_centroid = [0, 1, 2].map(|k| centroid[k] - sphere.position[k]);
-                let length = to_centroid.iter().map(|x| x * x).sum::<f64>().sqrt();
                 let normal = to_centroid.map(|x| x / length);
                 let point = [0, 1, 2].map(|k| sphere.position[k] + normal[k] * sphere.radius);
                 let body = RigidBodyBuilder::fixed()

@@ -118,18 +118,19 @@ fn panel(out: &mut String, p: &Panel, ox: f64, oy: f64) {
         p.y_label
     );
     for (k, s) in p.series.iter().enumerate() {
-        let path: Vec<String> = s
-            .points
-            .iter()
-            .filter(|q| drawable(q))
-            .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
-            .collect();
-        let _ = writeln!(
-            out,
-            r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="1.5"/>"#,
-            path.join(" "),
-            s.colour
-        );
+        // One line through each run of drawable points: a failed point breaks it.
+        for run in s.points.split(|q| !drawable(q)).filter(|run| run.len() > 1) {
+            let path: Vec<String> = run
+                .iter()
+                .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
+                .collect();
+            let _ = writeln!(
+                out,
+                r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="1.5"/>"#,
+                path.join(" "),
+                s.colour
+            );
+        }
         for &(x, y) in s.points.iter().filter(|q| drawable(q)) {
             let fill = if y > FLOOR { s.colour } else { "white" };
             let _ = writeln!(

@@ -244,3 +244,24 @@ fn a_striker_that_passes_through_or_is_caught_in_the_target_has_missed() {
     };
     assert_eq!(tunnelling_speed(&mut engine(bounce), dt), None);
 }
+
+#[test]
+fn the_plot_breaks_a_series_line_at_a_failed_run() {
+    let panel = Panel {
+        title: "t".into(),
+        y_label: "error".into(),
+        series: vec![Series {
+            name: "s".into(),
+            colour: "#123456",
+            points: vec![
+                (1e-3, 1e-3),
+                (2e-3, 1e-4),
+                (3e-3, f64::NAN),
+                (4e-3, 1e-5),
+                (5e-3, 1e-6),
+            ],
+        }],
+    };
+    let svg = render(&[panel], 1);
+    assert_eq!(svg.matches("<polyline").count(), 2, "{svg}");
+}

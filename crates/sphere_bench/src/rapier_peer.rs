@@ -130,39 +130,30 @@ impl RapierWorld {
                 && sphere.radius >= WALL_RATIO * smallest
                 && length > sphere.radius
                 && length.is_finite();
-            if wall {
+            let (place, shape) = if wall {
                 let normal = to_centroid.map(|x| x / length);
                 let point = [0, 1, 2].map(|k| sphere.position[k] + normal[k] * sphere.radius);
-                let body = RigidBodyBuilder::fixed()
-                    .translation(to_vector(point))
-                    .build();
-                let handle = bodies.insert(body);
-                let collider = ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(
-                    to_vector(normal).normalize(),
-                ))
-                .restitution(sphere.restitution as Real)
-                .restitution_combine_rule(CoefficientCombineRule::Min)
-                .friction(0.0)
-                .friction_combine_rule(CoefficientCombineRule::Min)
-                .build();
-                colliders.insert_with_parent(collider, handle, &mut bodies);
-                handles.push(handle);
-                continue;
-            }
+                let outward = rapier3d::na::Unit::new_unchecked(to_vector(normal).normalize());
+                (point, ColliderBuilder::halfspace(outward))
+            } else {
+                (
+                    sphere.position,
+                    ColliderBuilder::ball(sphere.radius as Real).density(sphere.density as Real),
+                )
+            };
             let builder = if sphere.fixed {
                 RigidBodyBuilder::fixed()
             } else {
                 RigidBodyBuilder::dynamic().ccd_enabled(config.ccd)
             };
             let body = builder
-                .translation(to_vector(sphere.position))
+                .translation(to_vector(place))
                 .linvel(to_vector(sphere.velocity))
                 .lock_rotations()
                 .build();
             let handle = bodies.insert(body);
 
-            let collider = ColliderBuilder::ball(sphere.radius as Real)
-                .density(sphere.density as Real)
+            let collider = shape
                 .restitution(sphere.restitution as Real)
                 .restitution_combine_rule(CoefficientCombineRule::Min)
                 .friction(0.0)

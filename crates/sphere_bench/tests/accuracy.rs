@@ -161,24 +161,29 @@ fn exact_never_tunnels_and_one_bisection_step_does_at_walking_speed() {
     assert!(missed <= 10.0, "missed from {missed} m/s");
 }
 
-#[test]
-fn the_plot_leaves_out_failed_runs_and_draws_exact_answers_hollow() {
+/// One panel with one series, "s" in #123456, of `points`.
+fn plot(points: Vec<(f64, f64)>) -> String {
     let panel = Panel {
         title: "t".into(),
         y_label: "error".into(),
         series: vec![Series {
             name: "s".into(),
             colour: "#123456",
-            points: vec![
-                (1e-3, 0.0),
-                (2e-3, 1e-3),
-                (3e-3, f64::NAN),
-                (4e-3, f64::INFINITY),
-                (0.0, 1e-3),
-            ],
+            points,
         }],
     };
-    let svg = render(&[panel], 1);
+    render(&[panel], 1)
+}
+
+#[test]
+fn the_plot_leaves_out_failed_runs_and_draws_exact_answers_hollow() {
+    let svg = plot(vec![
+        (1e-3, 0.0),
+        (2e-3, 1e-3),
+        (3e-3, f64::NAN),
+        (4e-3, f64::INFINITY),
+        (0.0, 1e-3),
+    ]);
     assert!(svg.contains("s (3 failed, not drawn)"), "{svg}");
     assert_eq!(svg.matches("<circle").count(), 2, "{svg}");
     assert_eq!(svg.matches(r##"fill="white" stroke="#123456""##).count(), 1);
@@ -247,21 +252,12 @@ fn a_striker_that_passes_through_or_is_caught_in_the_target_has_missed() {
 
 #[test]
 fn the_plot_breaks_a_series_line_at_a_failed_run() {
-    let panel = Panel {
-        title: "t".into(),
-        y_label: "error".into(),
-        series: vec![Series {
-            name: "s".into(),
-            colour: "#123456",
-            points: vec![
-                (1e-3, 1e-3),
-                (2e-3, 1e-4),
-                (3e-3, f64::NAN),
-                (4e-3, 1e-5),
-                (5e-3, 1e-6),
-            ],
-        }],
-    };
-    let svg = render(&[panel], 1);
+    let svg = plot(vec![
+        (1e-3, 1e-3),
+        (2e-3, 1e-4),
+        (3e-3, f64::NAN),
+        (4e-3, 1e-5),
+        (5e-3, 1e-6),
+    ]);
     assert_eq!(svg.matches("<polyline").count(), 2, "{svg}");
 }

@@ -8,9 +8,12 @@ missing=()
 command -v xvfb-run >/dev/null 2>&1 || missing+=(xvfb xauth)
 ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1 || missing+=(mesa-vulkan-drivers)
 # winit's X11 backend opens these at run time (not at link time, so a build does not notice).
+# ldconfig lives in /sbin, off a normal user's PATH; its list is read once, whole (a `grep -q`
+# reading a pipe may stop early and, under pipefail, fail the pipe at random).
+libraries=$(PATH="$PATH:/sbin:/usr/sbin" ldconfig -p 2>/dev/null || true)
 for pair in libX11-xcb.so.1:libx11-xcb1 libXcursor.so.1:libxcursor1 libXi.so.6:libxi6 \
     libxkbcommon-x11.so.0:libxkbcommon-x11-0; do
-    ldconfig -p | grep -q "${pair%%:*}" || missing+=("${pair##*:}")
+    [[ "$libraries" == *"${pair%%:*}"* ]] || missing+=("${pair##*:}")
 done
 if [ ${#missing[@]} -eq 0 ]; then
     exit 0

@@ -42,6 +42,18 @@ struct Options {
     rapier_flat_walls: bool,
 }
 
+/// `value` as a positive integer, or an error naming `flag`.
+fn positive<T: std::str::FromStr + PartialOrd + Default>(
+    value: &str,
+    flag: &str,
+) -> Result<T, String> {
+    value
+        .parse()
+        .ok()
+        .filter(|n| *n > T::default())
+        .ok_or(format!("{flag} needs a positive integer"))
+}
+
 fn parse() -> Result<Options, String> {
     let mut options = Options {
         sizes: vec![1_000, 10_000, 100_000],
@@ -64,20 +76,8 @@ fn parse() -> Result<Options, String> {
                     .map(|s| s.parse().map_err(|_| format!("bad size '{s}'")))
                     .collect::<Result<_, _>>()?
             }
-            "--steps" => {
-                options.steps = value()?
-                    .parse()
-                    .ok()
-                    .filter(|&s| s > 0)
-                    .ok_or("--steps needs a positive integer")?
-            }
-            "--repeat" => {
-                options.repeat = value()?
-                    .parse()
-                    .ok()
-                    .filter(|&r| r > 0)
-                    .ok_or("--repeat needs a positive integer")?
-            }
+            "--steps" => options.steps = positive(value()?, flag)?,
+            "--repeat" => options.repeat = positive(value()?, flag)?,
             "--scenes" => {
                 options.scenes = value()?.split(',').map(str::to_owned).collect();
                 if let Some(bad) = options
@@ -89,13 +89,7 @@ fn parse() -> Result<Options, String> {
                 }
             }
             "--phases" => options.phases = true,
-            "--rapier-iterations" => {
-                options.rapier_iterations = value()?
-                    .parse()
-                    .ok()
-                    .filter(|&n| n > 0)
-                    .ok_or("--rapier-iterations needs a positive integer")?
-            }
+            "--rapier-iterations" => options.rapier_iterations = positive(value()?, flag)?,
             "--rapier-length-unit" => {
                 options.rapier_length_unit = value()?
                     .parse()

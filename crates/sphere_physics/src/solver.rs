@@ -947,11 +947,11 @@ impl Solver {
             return false;
         }
         let reach = si.radius() + sj.radius();
-        let band = contact_band(reach, ctx.settings);
+        let band = contact_band(si, sj, ctx.settings);
         (sj.position - si.position).length_squared() <= (reach + band) * (reach + band)
     }
 
-    /// If `(i, j)` touch (within a millionth of their radii) and approach no faster than the
+    /// If `(i, j)` touch (within [`contact_band`]) and approach no faster than the
     /// resting speed, records them as a resting contact.
     /// A pair overlapping deeper than half the creep distance also gets a separating speed
     /// that undoes the excess over the step: the resting solve converges only so far, and
@@ -967,7 +967,7 @@ impl Solver {
         }
         let d = sj.position - si.position;
         let reach = si.radius() + sj.radius();
-        let band = contact_band(reach, settings);
+        let band = contact_band(si, sj, settings);
         let distance_squared = d.length_squared();
         if distance_squared > (reach + band) * (reach + band) || distance_squared == 0.0 {
             return false;
@@ -1079,8 +1079,8 @@ impl Solver {
     /// than the resting speed: restitution 0).
     fn restitution(&self, a: usize, b: usize, normal: DVec3, settings: &Settings) -> (f64, bool) {
         let (sa, sb) = (&self.segments[a], &self.segments[b]);
-        let (ea, eb) = (self.extra(a), self.extra(b));
         let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
+        let (ea, eb) = (self.extra(a), self.extra(b));
         if approach_speed <= self.resting_scale * pressing(ea, eb, normal) {
             (0.0, true)
         } else {
@@ -1321,7 +1321,7 @@ impl Solver {
             let bias = if resting {
                 let reach = sa.radius() + sb.radius();
                 let press = pressing(self.extra(a), self.extra(b), normal);
-                self.correction(reach - distance, contact_band(reach, settings), press, ctx)
+                self.correction(reach - distance, contact_band(sa, sb, settings), press, ctx)
             } else {
                 0.0
             };
@@ -1492,7 +1492,8 @@ impl Solver {
             // move apart (either time-of-impact method would say so, after a square root).
             return;
         }
-        if self.creep_scale > 0.0 && d.length_squared() <= (reach * (1.0 + 1e-6)).powi(2) {
+        let band = contact_band(si, sj, ctx.settings);
+        if self.creep_scale > 0.0 && d.length_squared() <= (reach + band) * (reach + band) {
             // Touching and closing slower than the creep speed: left to the next step's resting
             // solve, rather than chased through a pile contact by contact.
             let distance = d.length();
@@ -1573,7 +1574,7 @@ impl Solver {
             // began to: stopping the pair dead here would cancel that and let a pressed pile
             // sink a little every step.
             let reach = sa.radius() + sb.radius();
-            let band = contact_band(reach, ctx.settings);
+            let band = contact_band(&sa, &sb, ctx.settings);
             let press = pressing(self.extra(a), self.extra(b), normal);
             let bias = self.correction(reach - distance, band, press, ctx);
             if bias > 0.0 {
@@ -1639,10 +1640,13 @@ impl Solver {
     }
 }
 
-/// How far apart two spheres with radii summing to `reach` may be and still touch: a millionth
-/// of the reach, plus the contact tolerance.
-fn contact_band(reach: f64, settings: &Settings) -> f64 {
-    reach * 1e-6 + settings.tolerance.epsilon() * (1.0 + reach)
+/// How far apart two spheres may be and still touch: a millionth of the smaller diameter, plus
+/// the contact tolerance (relative to the sum of the radii). A millionth of the radii's sum,
+/// as it was, let a small sphere on a large fixed one (a floor of radius 1e4) count as touching
+/// a centimetre above it or below its surface, and sink that far uncorrected.
+fn contact_band(a: &Segment, b: &Segment, settings: &Settings) -> f64 {
+    let reach = a.radius() + b.radius();
+    2e-6 * a.radius().min(b.radius()) + settings.tolerance.epsilon() * (1.0 + reach)
 }
 
 /// Hints that `value` will be read soon (a no-op where there is no such instruction).

@@ -40,8 +40,8 @@ pub struct Settings {
     /// resting solve, instead of being resolved one contact at a time: in a pile that would take
     /// thousands of ever smaller collisions. The overlap this allows is at most
     /// `creep_fraction · resting_factor · acceleration · dt²` (4e-5 m at 60 Hz under Earth
-    /// gravity; `dt` is each substep's) beyond the band within which spheres count as touching (a millionth of their
-    /// radii); at the bottom of a pile, pressed by the spheres above harder than by its own
+    /// gravity; `dt` is each substep's) beyond the band within which spheres count as touching
+    /// (a millionth of the smaller diameter, plus the tolerance); at the bottom of a pile, pressed by the spheres above harder than by its own
     /// weight, a few times that (2.1 times in the README's example pile of 2000), undone over
     /// the next steps. Default 0.01; 0 disables it. Without gravity or forces it never applies.
     pub creep_fraction: f64,

@@ -44,3 +44,39 @@ pub fn gas(n: u32, seed: u64) -> SceneDesc {
     ))
     .expect("the gas scene is valid")
 }
+
+/// `n` spheres of radius 0.05 (restitution 0.5) dropped into an open box under gravity: a
+/// lattice 16 cells deep, one cell in two filled, over a square floor sized so that the pile
+/// is as deep at every `n` (about six spheres), walled on four sides. The floor and walls are
+/// fixed spheres of radius 1e4 touching the box's faces. The spheres land within about 0.6 s
+/// and then jostle in a dense bed: a ball pit, the case an event-driven engine finds hardest
+/// (every sphere collides many times per step).
+pub fn pile(n: u32, seed: u64) -> SceneDesc {
+    let cell = 2.0 * RADIUS * 1.1;
+    let layers = 16.0;
+    let across = (2.0 * f64::from(n) / layers).sqrt().ceil();
+    let (half, height) = (0.5 * cell * across, cell * layers);
+    let wall = 1.0e4;
+    let walls = [
+        ("floor", [0.0, -wall, 0.0]),
+        ("wall x-", [-half - wall, 0.0, 0.0]),
+        ("wall x+", [half + wall, 0.0, 0.0]),
+        ("wall z-", [0.0, 0.0, -half - wall]),
+        ("wall z+", [0.0, 0.0, half + wall]),
+    ]
+    .map(|(name, [x, y, z])| {
+        format!(
+            "(name: \"{name}\", position: ({x:?}, {y:?}, {z:?}), radius: {wall:?}, fixed: true)"
+        )
+    })
+    .join(", ");
+    SceneDesc::from_ron(&format!(
+        "(name: \"pile {n}\", gravity: (0.0, -9.81, 0.0), restitution: 0.5,
+          spheres: [{walls}],
+          generate: [Shower(count: {n}, seed: {seed}, min: ({lo:?}, 0.0, {lo:?}),
+                            max: ({hi:?}, {height:?}, {hi:?}), radius: {RADIUS:?})])",
+        lo = -half,
+        hi = half,
+    ))
+    .expect("the pile scene is valid")
+}

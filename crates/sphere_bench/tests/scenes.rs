@@ -1,0 +1,64 @@
+//! The benchmark scenes are what their docs say: the counts, the walls, the spheres inside
+//! them, and the pile as deep at every size (so that its cost per sphere compares across sizes).
+
+use sphere_bench::scenes::{self, RADIUS};
+
+#[test]
+fn every_scene_has_its_spheres_and_fixed_bodies() {
+    for n in [1000, 10_000] {
+        let shower = scenes::shower(n, 1).build().unwrap();
+        let gas = scenes::gas(n, 1).build().unwrap();
+        let pile = scenes::pile(n, 1).build().unwrap();
+        // The dome; six walls; a floor and four walls.
+        for (world, fixed) in [(&shower, 1), (&gas, 6), (&pile, 5)] {
+            assert_eq!(world.len(), n as usize + fixed);
+            assert_eq!(
+                world.bodies().iter().filter(|b| b.is_fixed()).count(),
+                fixed
+            );
+        }
+    }
+}
+
+#[test]
+fn the_pile_starts_inside_its_open_box_and_is_as_deep_at_every_size() {
+    let mut depths = Vec::new();
+    for n in [1000, 10_000, 100_000] {
+        let world = scenes::pile(n, 1).build().unwrap();
+        let walls: Vec<_> = world.bodies().iter().filter(|b| b.is_fixed()).collect();
+        let spheres: Vec<_> = world.bodies().iter().filter(|b| !b.is_fixed()).collect();
+        // Inside every wall and above the floor (each a sphere of radius 1e4), at rest.
+        for s in &spheres {
+            assert_eq!(s.radius(), RADIUS);
+            assert_eq!(s.velocity(), sphere_physics::glam::DVec3::ZERO);
+            for w in &walls {
+                let gap = (s.position() - w.position()).length() - s.radius() - w.radius();
+                assert!(
+                    gap >= 0.0,
+                    "sphere {} overlaps {:?} by {}",
+                    s.id(),
+                    w.name(),
+                    -gap
+                );
+            }
+        }
+        // The floor's width from the walls along x: the bed's depth if the spheres packed at
+        // 0.6 over it.
+        let x_walls: Vec<f64> = walls
+            .iter()
+            .filter(|w| w.name().is_some_and(|name| name.starts_with("wall x")))
+            .map(|w| w.position().x.abs() - w.radius())
+            .collect();
+        assert_eq!(x_walls.len(), 2);
+        let width = 2.0 * x_walls[0];
+        let volume = n as f64 * 4.0 / 3.0 * std::f64::consts::PI * RADIUS.powi(3);
+        depths.push(volume / 0.6 / (width * width));
+    }
+    // About six sphere diameters deep at every size (the floor's side rounds up to a cell).
+    for depth in &depths {
+        assert!(
+            (0.5..0.7).contains(depth),
+            "the pile's beds would be {depths:?} m deep"
+        );
+    }
+}

@@ -281,8 +281,8 @@ fn compress_exactly(
             .fold(0, |bits, i| bits | 1 << i)
     };
     // First a guess and its corrections (block principal pivoting): the approaching contacts
-    // active; then, while the answer pulls on an active contact or leaves an inactive one
-    // approaching, the one dropped and the other added. In a pile, where a resting impact
+    // active; then, while the answer pulls on active contacts or leaves inactive ones
+    // approaching, those pulled dropped and those approaching added. In a pile, where a resting impact
     // joins the contacts it presses on, this usually lands on the answer in one or two solves
     // where the search below tries dozens. It may cycle, so it gets a few tries.
     let mut set = (0..n)

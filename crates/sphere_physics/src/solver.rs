@@ -1079,8 +1079,8 @@ impl Solver {
     /// than the resting speed: restitution 0).
     fn restitution(&self, a: usize, b: usize, normal: DVec3, settings: &Settings) -> (f64, bool) {
         let (sa, sb) = (&self.segments[a], &self.segments[b]);
-        let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
         let (ea, eb) = (self.extra(a), self.extra(b));
+        let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
         if approach_speed <= self.resting_scale * pressing(ea, eb, normal) {
             (0.0, true)
         } else {

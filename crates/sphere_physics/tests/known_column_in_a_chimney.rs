@@ -4,8 +4,8 @@
 //! presses them), so the column's weight, pushed sideways through its zig-zag, is passed back
 //! and forth as impacts at restitution 0.5: about 380 collisions a step, 47 per sphere, for
 //! ever. The smallest case of the ball pit's failure (`sphere-bench --scenes pile`), kept here
-//! to be un-ignored when it is fixed. docs/experiments/ball_pit_attempt.diff brings this column
-//! to rest (24 collisions a step, the resting solve's) but not a 1000-sphere pit.
+//! to be un-ignored when it is fixed. Both diffs in docs/experiments bring this column to rest
+//! (24 collisions a step, the resting solve's), but neither is on main (see why there).
 
 use sphere_physics::SceneDesc;
 

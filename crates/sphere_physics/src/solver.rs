@@ -211,6 +211,26 @@ pub(crate) struct Solver {
     /// it, worked out once per step from the tolerance.
     apart: Apart,
     resting: Vec<RestingContact>,
+    /// Pairs apart by less than [`Solver::near_reach`] beyond the contact band at the start of
+    /// the step: `(a, b, normal, distance)`. Those the resting solve would push together become
+    /// speculative contacts (see [`Solver::add_speculative`]).
+    near: Vec<(u32, u32, DVec3, f64)>,
+    /// How far beyond the contact band a pair may be and still close within the step at the
+    /// resting speed of the largest acceleration.
+    near_reach: f64,
+    /// One bit per body (in body order) that took a resting impulse in the last step: its box
+    /// is grown by how far a resting speed carries it in a step, so that the first pass finds
+    /// its near pairs (see [`Solver::near`]).
+    rested: Vec<u64>,
+    /// The loads this step's resting solve put on its contacts, `(a, b, load)` with `a < b`
+    /// solver indices, sorted: each pair's impulse as a change of relative speed per second.
+    /// A loaded contact is pressed by at least its load for the rest of the step.
+    loads: Vec<(u32, u32, f64)>,
+    /// The last resting solve's impulses per second, by the pair's body ids (smaller first),
+    /// sorted: the next solve starts from them (a warm start).
+    warm: Vec<(crate::BodyId, crate::BodyId, f64)>,
+    /// Scratch for the next warm start.
+    next_warm: Vec<(crate::BodyId, crate::BodyId, f64)>,
     /// Solver index `p` is body index `order[p]` (the broad phase's spatial order).
     order: Vec<u32>,
     /// Body `i` is solver index `position_of[i]` (the inverse of `order`).
@@ -368,6 +388,10 @@ struct RestingContact {
     /// The separating speed to reach: enough to undo, over the step, an overlap deeper than
     /// the creep allowance (0 for the usual contact, within it).
     bias: f64,
+    /// The acceleration pressing the pair (see `Solver::start_press`).
+    press: f64,
+    /// Apart at the start of the step (see [`Solver::add_speculative`]): not a collision.
+    speculative: bool,
 }
 
 /// Whether segment `k` of `segments` is a dynamic body's (fixed ones join nothing).
@@ -505,6 +529,7 @@ impl Solver {
             0.0
         };
         self.creep_scale = settings.creep_fraction * self.resting_scale;
+        self.near_reach = self.resting_scale * 3f64.sqrt() * largest_acceleration * dt;
         self.apart = Apart::new(settings.tolerance.epsilon());
 
         // First impacts of every pair whose swept boxes meet.
@@ -535,6 +560,24 @@ impl Solver {
             }
             None => self.order.extend(0..self.segments.len() as u32),
         }
+        self.position_of.clear();
+        self.position_of.resize(self.order.len(), 0);
+        for (p, &i) in self.order.iter().enumerate() {
+            self.position_of[i as usize] = p as u32;
+        }
+        if self.rested.len() == bodies.len().div_ceil(64) && self.resting_scale > 0.0 {
+            for (w, &word) in self.rested.iter().enumerate() {
+                let mut word = word;
+                while word != 0 {
+                    let i = w * 64 + word.trailing_zeros() as usize;
+                    word &= word - 1;
+                    let grow = self.resting_scale * dt * self.extras[i].acceleration.length();
+                    let b = &mut boxes[self.position_of[i] as usize];
+                    b.lo -= DVec3::splat(grow);
+                    b.hi += DVec3::splat(grow);
+                }
+            }
+        }
         laps.lap(&mut self.profile.sort);
         broad.build(&boxes);
         laps.lap(&mut self.profile.build);
@@ -543,6 +586,8 @@ impl Solver {
         // Touching pairs that approach no faster than the resting speed are resting contacts,
         // solved together below; every other pair gets its time of impact.
         self.resting.clear();
+        self.near.clear();
+        self.loads.clear();
         // Pairs are tested in batches: a batch's second bodies' segments are asked for when it
         // comes, and read when the next has come (rows of cells lie far apart in memory).
         let mut test_batch = |solver: &mut Self, batch: &[(u32, u32)]| {
@@ -580,8 +625,12 @@ impl Solver {
         (self.broad, self.boxes) = (broad, boxes);
         laps.lap(&mut self.profile.first_pass);
         if !self.resting.is_empty() {
+            self.add_speculative(ctx);
             self.solve_resting(ctx, stats);
             self.requery_touched(0.0, ctx, stats);
+        } else {
+            self.warm.clear();
+            self.rested.clear();
         }
         laps.lap(&mut self.profile.resting);
 
@@ -691,11 +740,6 @@ impl Solver {
         }
         // Write back in body order (bodies and extras read in order, segments gathered),
         // summing the energies and momentum while each body is at hand.
-        self.position_of.clear();
-        self.position_of.resize(self.order.len(), 0);
-        for (p, &i) in self.order.iter().enumerate() {
-            self.position_of[i as usize] = p as u32;
-        }
         let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
         let mut strung = self.strung.iter().peekable();
         for (index, ((body, kick_after), &p)) in bodies
@@ -948,7 +992,8 @@ impl Solver {
         }
         let reach = si.radius() + sj.radius();
         let band = contact_band(si, sj, ctx.settings);
-        (sj.position - si.position).length_squared() <= (reach + band) * (reach + band)
+        let near = reach + band + self.near_reach;
+        (sj.position - si.position).length_squared() <= near * near
     }
 
     /// If `(i, j)` touch (within [`contact_band`]) and approach no faster than the
@@ -969,13 +1014,18 @@ impl Solver {
         let reach = si.radius() + sj.radius();
         let band = contact_band(si, sj, settings);
         let distance_squared = d.length_squared();
-        if distance_squared > (reach + band) * (reach + band) || distance_squared == 0.0 {
+        let near = reach + band + self.near_reach;
+        if distance_squared > near * near || distance_squared == 0.0 {
             return false;
         }
         let distance = distance_squared.sqrt();
         let normal = d / distance;
+        if distance > reach + band {
+            self.near.push((i as u32, j as u32, normal, distance));
+            return false;
+        }
         let approach = -(sj.velocity - si.velocity).dot(normal);
-        let press = pressing(self.extra(i), self.extra(j), normal);
+        let press = self.start_press(i, j, normal);
         let bias = self.correction(reach - distance, band, press, ctx);
         // Separating as slowly as a resting pair may approach counts too: in a stack all fall
         // together at the start of the step, and only the solve shows which contacts hold.
@@ -992,8 +1042,56 @@ impl Solver {
             inverse_mass_a: self.extra(i).inverse_mass,
             inverse_mass_b: self.extra(j).inverse_mass,
             bias,
+            press,
+            speculative: false,
         });
         true
+    }
+
+    /// Adds to the resting contacts the near pairs (apart, see [`Solver::near`]) with a body in
+    /// a touching resting contact, each allowed to approach as fast as it does now or fast
+    /// enough to end the step half the contact band apart, whichever is faster: the solve
+    /// stops it short only if the solve itself pushes the pair together (in a pile, a sphere
+    /// pushed sideways by the spheres it rests on, towards a wall a hair away), never a pair
+    /// meeting of its own accord (two balls rolling into each other on a floor).
+    fn add_speculative(&mut self, ctx: &StepContext<'_>) {
+        if self.near.is_empty() {
+            return;
+        }
+        self.clear_touched();
+        for k in 0..self.resting.len() {
+            let c = self.resting[k];
+            self.touch(c.a);
+            self.touch(c.b);
+        }
+        for n in 0..self.near.len() {
+            let (i, j, normal, distance) = self.near[n];
+            let (a, b) = (i as usize, j as usize);
+            if !(self.is_touched(a) || self.is_touched(b)) {
+                continue;
+            }
+            let (sa, sb) = (&self.segments[a], &self.segments[b]);
+            let reach = sa.radius() + sb.radius();
+            let band = contact_band(sa, sb, ctx.settings);
+            let approach = -(sb.velocity - sa.velocity).dot(normal);
+            let allowed = approach.max((distance - reach - 0.5 * band) / ctx.dt);
+            let press = self.start_press(a, b, normal);
+            if allowed > self.resting_scale * press {
+                continue;
+            }
+            self.resting.push(RestingContact {
+                a: i,
+                b: j,
+                normal,
+                impulse: 0.0,
+                inverse_mass_a: self.extra(a).inverse_mass,
+                inverse_mass_b: self.extra(b).inverse_mass,
+                bias: -allowed,
+                press,
+                speculative: true,
+            });
+        }
+        self.clear_touched();
     }
 
     /// The separating speed that undoes, over a step, the part of a resting pair's `overlap`
@@ -1010,12 +1108,27 @@ impl Solver {
             * self
                 .resting
                 .iter()
-                .map(|c| {
-                    let (a, b) = (self.extra(c.a as usize), self.extra(c.b as usize));
-                    self.resting_scale * pressing(a, b, c.normal)
-                })
+                .map(|c| self.resting_scale * c.press)
                 .fold(0.0, f64::max);
         let count = self.resting.len();
+        // Start from the last solve's impulses: a bed at rest needs the same ones step after
+        // step, and a wedged bed's load takes Gauss–Seidel far more sweeps to find than one.
+        if !self.warm.is_empty() {
+            for k in 0..count {
+                let c = &self.resting[k];
+                let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
+                let key = (a.min(b), a.max(b));
+                if let Ok(w) = self.warm.binary_search_by_key(&key, |w| (w.0, w.1)) {
+                    let impulse = self.warm[w].2 * ctx.dt;
+                    let c = &mut self.resting[k];
+                    c.impulse = impulse;
+                    let (a, b, normal) = (c.a as usize, c.b as usize, c.normal);
+                    let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
+                    self.segments[a].velocity -= normal * (impulse * ima);
+                    self.segments[b].velocity += normal * (impulse * imb);
+                }
+            }
+        }
         for sweep in 0..RESTING_SWEEPS {
             let mut largest = 0.0f64;
             // Forward and backward in turn (symmetric Gauss–Seidel): a load carried down a
@@ -1045,6 +1158,9 @@ impl Solver {
         for c in resting.iter().filter(|c| c.impulse > 0.0) {
             self.touch(c.a);
             self.touch(c.b);
+            if c.speculative {
+                continue;
+            }
             let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
             stats.collisions = stats.collisions.saturating_add(1);
             stats.resting_contacts = stats.resting_contacts.saturating_add(1);
@@ -1058,6 +1174,28 @@ impl Solver {
                 true,
             ));
         }
+        self.next_warm.clear();
+        self.loads.clear();
+        for c in resting.iter().filter(|c| c.impulse > 0.0) {
+            let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
+            self.next_warm
+                .push((a.min(b), a.max(b), c.impulse / ctx.dt));
+            let load = c.impulse * (c.inverse_mass_a + c.inverse_mass_b) / ctx.dt;
+            self.loads.push((c.a, c.b, load));
+        }
+        self.next_warm.sort_unstable_by_key(|w| (w.0, w.1));
+        self.rested.clear();
+        self.rested.resize(self.order.len().div_ceil(64), 0);
+        for c in resting.iter().filter(|c| c.impulse > 0.0) {
+            for k in [c.a, c.b] {
+                if !self.segments[k as usize].is_fixed() {
+                    let i = self.order[k as usize] as usize;
+                    self.rested[i / 64] |= 1 << (i % 64);
+                }
+            }
+        }
+        std::mem::swap(&mut self.warm, &mut self.next_warm);
+        self.loads.sort_unstable_by_key(|l| (l.0, l.1));
         self.resting = resting;
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
@@ -1081,13 +1219,42 @@ impl Solver {
         let (sa, sb) = (&self.segments[a], &self.segments[b]);
         let (ea, eb) = (self.extra(a), self.extra(b));
         let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-        if approach_speed <= self.resting_scale * pressing(ea, eb, normal) {
+        if approach_speed <= self.resting_scale * self.press(a, b, normal) {
             (0.0, true)
         } else {
             let combined = settings
                 .restitution_combine
                 .combine(ea.restitution, eb.restitution);
             (combined, false)
+        }
+    }
+
+    /// The acceleration pressing touching pair `(i, j)` together along `normal` at the start
+    /// of the step, when the resting solve picks its contacts: the larger of the two bodies'
+    /// whole accelerations, unless one hangs on a string (then only along the normal, see
+    /// [`pressing`]). In a pile the weight pushes sideways too, through the neighbours; a
+    /// contact that touched before the step began is a loaded one, not a first meeting.
+    fn start_press(&self, i: usize, j: usize, normal: DVec3) -> f64 {
+        let (a, b) = (self.extra(i), self.extra(j));
+        let own = pressing(a, b, normal);
+        if self.strings && (self.string_of(i).is_some() || self.string_of(j).is_some()) {
+            return own;
+        }
+        own.max(a.acceleration.length().max(b.acceleration.length()))
+    }
+
+    /// The acceleration pressing pair `(a, b)` together along `normal` within the step: the
+    /// bodies' own (see [`pressing`]), or the load this step's resting solve put on their
+    /// contact, whichever is larger.
+    fn press(&self, a: usize, b: usize, normal: DVec3) -> f64 {
+        let own = pressing(self.extra(a), self.extra(b), normal);
+        if self.loads.is_empty() {
+            return own;
+        }
+        let key = (a.min(b) as u32, a.max(b) as u32);
+        match self.loads.binary_search_by_key(&key, |l| (l.0, l.1)) {
+            Ok(k) => own.max(self.loads[k].2),
+            Err(_) => own,
         }
     }
 
@@ -1247,7 +1414,7 @@ impl Solver {
         }
         let normal = d / distance;
         let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
-        approach_speed <= self.resting_scale * pressing(self.extra(a), self.extra(b), normal)
+        approach_speed <= self.resting_scale * self.press(a, b, normal)
     }
 
     /// Resolves contacts that happen at one instant together (see [`resolve_simultaneous`]).
@@ -1320,7 +1487,7 @@ impl Solver {
             // deeper than the allowance.
             let bias = if resting {
                 let reach = sa.radius() + sb.radius();
-                let press = pressing(self.extra(a), self.extra(b), normal);
+                let press = self.press(a, b, normal);
                 self.correction(reach - distance, contact_band(sa, sb, settings), press, ctx)
             } else {
                 0.0
@@ -1499,7 +1666,7 @@ impl Solver {
             let distance = d.length();
             if distance > 0.0 {
                 let normal = d / distance;
-                let creep = self.creep_scale * pressing(self.extra(i), self.extra(j), normal);
+                let creep = self.creep_scale * self.press(i, j, normal);
                 if -w.dot(normal) <= creep {
                     return;
                 }
@@ -1575,7 +1742,7 @@ impl Solver {
             // sink a little every step.
             let reach = sa.radius() + sb.radius();
             let band = contact_band(&sa, &sb, ctx.settings);
-            let press = pressing(self.extra(a), self.extra(b), normal);
+            let press = self.press(a, b, normal);
             let bias = self.correction(reach - distance, band, press, ctx);
             if bias > 0.0 {
                 let extra = bias / (ima + imb);

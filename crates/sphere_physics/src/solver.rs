@@ -213,7 +213,7 @@ pub(crate) struct Solver {
     resting: Vec<RestingContact>,
     /// Pairs apart by less than [`Solver::near_reach`] beyond the contact band at the start of
     /// the step: `(a, b, normal, distance)`. Those the resting solve would push together become
-    /// speculative contacts (see [`Solver::add_speculative`]).
+    /// speculative contacts (see [`Solver::add_guards`]).
     near: Vec<(u32, u32, DVec3, f64)>,
     /// How far beyond the contact band a pair may be and still close within the step at the
     /// resting speed of the largest acceleration.
@@ -222,6 +222,12 @@ pub(crate) struct Solver {
     /// is grown by how far a resting speed carries it in a step, so that the first pass finds
     /// its near pairs (see [`Solver::near`]).
     rested: Vec<u64>,
+    /// [`Solver::rested`] in solver order, for this step's first pass: only pairs with such a
+    /// body are sought as near pairs.
+    rested_here: Vec<u64>,
+    /// One bit per segment that carries a load from this step's resting solve (see
+    /// [`Solver::loads`]): other pairs are spared the search.
+    loaded: Vec<u64>,
     /// The loads this step's resting solve put on its contacts, `(a, b, load)` with `a < b`
     /// solver indices, sorted: each pair's impulse as a change of relative speed per second.
     /// A loaded contact is pressed by at least its load for the rest of the step.
@@ -390,7 +396,7 @@ struct RestingContact {
     bias: f64,
     /// The acceleration pressing the pair (see `Solver::start_press`).
     press: f64,
-    /// Apart at the start of the step (see [`Solver::add_speculative`]): not a collision.
+    /// Apart at the start of the step (see [`Solver::add_guards`]): not a collision.
     speculative: bool,
 }
 
@@ -565,14 +571,21 @@ impl Solver {
         for (p, &i) in self.order.iter().enumerate() {
             self.position_of[i as usize] = p as u32;
         }
-        if self.rested.len() == bodies.len().div_ceil(64) && self.resting_scale > 0.0 {
+        let words = self.segments.len().div_ceil(64);
+        self.rested_here.clear();
+        self.rested_here.resize(words, 0);
+        self.loaded.clear();
+        self.loaded.resize(words, 0);
+        if self.rested.len() == words && self.resting_scale > 0.0 {
             for (w, &word) in self.rested.iter().enumerate() {
                 let mut word = word;
                 while word != 0 {
                     let i = w * 64 + word.trailing_zeros() as usize;
                     word &= word - 1;
                     let grow = self.resting_scale * dt * self.extras[i].acceleration.length();
-                    let b = &mut boxes[self.position_of[i] as usize];
+                    let p = self.position_of[i] as usize;
+                    self.rested_here[p / 64] |= 1 << (p % 64);
+                    let b = &mut boxes[p];
                     b.lo -= DVec3::splat(grow);
                     b.hi += DVec3::splat(grow);
                 }
@@ -625,7 +638,7 @@ impl Solver {
         (self.broad, self.boxes) = (broad, boxes);
         laps.lap(&mut self.profile.first_pass);
         if !self.resting.is_empty() {
-            self.add_speculative(ctx);
+            self.add_guards(ctx);
             self.solve_resting(ctx, stats);
             self.requery_touched(0.0, ctx, stats);
         } else {
@@ -992,8 +1005,14 @@ impl Solver {
         }
         let reach = si.radius() + sj.radius();
         let band = contact_band(si, sj, ctx.settings);
+        let distance_squared = (sj.position - si.position).length_squared();
         let near = reach + band + self.near_reach;
-        (sj.position - si.position).length_squared() <= near * near
+        if distance_squared > near * near {
+            return false;
+        }
+        distance_squared <= (reach + band) * (reach + band)
+            || bit(&self.rested_here, i)
+            || bit(&self.rested_here, j)
     }
 
     /// If `(i, j)` touch (within [`contact_band`]) and approach no faster than the
@@ -1014,7 +1033,11 @@ impl Solver {
         let reach = si.radius() + sj.radius();
         let band = contact_band(si, sj, settings);
         let distance_squared = d.length_squared();
-        let near = reach + band + self.near_reach;
+        let near = if bit(&self.rested_here, i) || bit(&self.rested_here, j) {
+            reach + band + self.near_reach
+        } else {
+            reach + band
+        };
         if distance_squared > near * near || distance_squared == 0.0 {
             return false;
         }
@@ -1025,12 +1048,25 @@ impl Solver {
             return false;
         }
         let approach = -(sj.velocity - si.velocity).dot(normal);
-        let press = self.start_press(i, j, normal);
-        let bias = self.correction(reach - distance, band, press, ctx);
         // Separating as slowly as a resting pair may approach counts too: in a stack all fall
         // together at the start of the step, and only the solve shows which contacts hold.
-        let window = self.resting_scale * press;
-        if approach < -(window + bias) || approach > window || (window == 0.0 && bias == 0.0) {
+        let rests = |press: f64| {
+            let bias = self.correction(reach - distance, band, press, ctx);
+            let window = self.resting_scale * press;
+            let out = approach < -(window + bias) || approach > window;
+            (!(out || (window == 0.0 && bias == 0.0)), bias)
+        };
+        let mut press = pressing(self.extra(i), self.extra(j), normal);
+        let (mut resting, mut bias) = rests(press);
+        if !resting && self.sustained(i, j) {
+            // A contact that took a load in the last step is pressed by the weight whichever
+            // way it points: in a pile the weight pushes sideways too, through the neighbours.
+            press = self.start_press(i, j, normal);
+            (resting, bias) = rests(press);
+        }
+        if !resting {
+            // Not resting: if the solve would push it together, a guard (see `add_guards`).
+            self.near.push((i as u32, j as u32, normal, distance));
             return false;
         }
         self.tested.push((i as u32, j as u32));
@@ -1048,13 +1084,26 @@ impl Solver {
         true
     }
 
-    /// Adds to the resting contacts the near pairs (apart, see [`Solver::near`]) with a body in
-    /// a touching resting contact, each allowed to approach as fast as it does now or fast
-    /// enough to end the step half the contact band apart, whichever is faster: the solve
-    /// stops it short only if the solve itself pushes the pair together (in a pile, a sphere
-    /// pushed sideways by the spheres it rests on, towards a wall a hair away), never a pair
-    /// meeting of its own accord (two balls rolling into each other on a floor).
-    fn add_speculative(&mut self, ctx: &StepContext<'_>) {
+    /// Whether touching pair `(i, j)` took an impulse in the last step's resting solve.
+    fn sustained(&self, i: usize, j: usize) -> bool {
+        let rested = |k: usize| self.segments[k].is_fixed() || bit(&self.rested_here, k);
+        if self.warm.is_empty() || !(rested(i) && rested(j)) {
+            return false;
+        }
+        let (a, b) = (self.extra(i).id, self.extra(j).id);
+        self.warm
+            .binary_search_by_key(&(a.min(b), a.max(b)), |w| (w.0, w.1))
+            .is_ok()
+    }
+
+    /// Adds to the resting contacts, as guards, the pairs that are not resting contacts but
+    /// touch or nearly touch (see [`Solver::near`]) and have a body in a resting contact: each
+    /// may approach as fast as it does now, or as fast as ends the step half the contact band
+    /// apart, whichever is faster. A guard takes an impulse only if the solve itself pushes
+    /// its pair together (in a pile, a sphere pushed sideways by the spheres it rests on,
+    /// towards a wall a hair away), never against a pair meeting of its own accord (two balls
+    /// rolling into each other on a floor meet with their restitution).
+    fn add_guards(&mut self, ctx: &StepContext<'_>) {
         if self.near.is_empty() {
             return;
         }
@@ -1074,7 +1123,7 @@ impl Solver {
             let reach = sa.radius() + sb.radius();
             let band = contact_band(sa, sb, ctx.settings);
             let approach = -(sb.velocity - sa.velocity).dot(normal);
-            let allowed = approach.max((distance - reach - 0.5 * band) / ctx.dt);
+            let allowed = approach.max(((distance - reach - 0.5 * band) / ctx.dt).max(0.0));
             let press = self.start_press(a, b, normal);
             if allowed > self.resting_scale * press {
                 continue;
@@ -1088,7 +1137,7 @@ impl Solver {
                 inverse_mass_b: self.extra(b).inverse_mass,
                 bias: -allowed,
                 press,
-                speculative: true,
+                speculative: distance > reach + band,
             });
         }
         self.clear_touched();
@@ -1182,6 +1231,9 @@ impl Solver {
                 .push((a.min(b), a.max(b), c.impulse / ctx.dt));
             let load = c.impulse * (c.inverse_mass_a + c.inverse_mass_b) / ctx.dt;
             self.loads.push((c.a, c.b, load));
+            for k in [c.a as usize, c.b as usize] {
+                self.loaded[k / 64] |= 1 << (k % 64);
+            }
         }
         self.next_warm.sort_unstable_by_key(|w| (w.0, w.1));
         self.rested.clear();
@@ -1248,7 +1300,7 @@ impl Solver {
     /// contact, whichever is larger.
     fn press(&self, a: usize, b: usize, normal: DVec3) -> f64 {
         let own = pressing(self.extra(a), self.extra(b), normal);
-        if self.loads.is_empty() {
+        if !(bit(&self.loaded, a) && bit(&self.loaded, b)) {
             return own;
         }
         let key = (a.min(b) as u32, a.max(b) as u32);
@@ -1814,6 +1866,13 @@ impl Solver {
 fn contact_band(a: &Segment, b: &Segment, settings: &Settings) -> f64 {
     let reach = a.radius() + b.radius();
     2e-6 * a.radius().min(b.radius()) + settings.tolerance.epsilon() * (1.0 + reach)
+}
+
+/// Whether bit `k` of `bits` is set (false beyond its end).
+#[inline(always)]
+fn bit(bits: &[u64], k: usize) -> bool {
+    bits.get(k / 64)
+        .is_some_and(|word| word >> (k % 64) & 1 != 0)
 }
 
 /// Hints that `value` will be read soon (a no-op where there is no such instruction).

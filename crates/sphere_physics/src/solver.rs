@@ -398,6 +398,10 @@ struct RestingContact {
     press: f64,
     /// Apart at the start of the step (see [`Solver::add_guards`]): not a collision.
     speculative: bool,
+    /// The impulse before the current sweep, and the solve's search direction (see
+    /// `Solver::solve_resting`).
+    before: f64,
+    direction: f64,
 }
 
 /// Whether segment `k` of `segments` is a dynamic body's (fixed ones join nothing).
@@ -1080,6 +1084,8 @@ impl Solver {
             bias,
             press,
             speculative: false,
+            before: 0.0,
+            direction: 0.0,
         });
         true
     }
@@ -1138,6 +1144,8 @@ impl Solver {
                 bias: -allowed,
                 press,
                 speculative: distance > reach + band,
+                before: 0.0,
+                direction: 0.0,
             });
         }
         self.clear_touched();
@@ -1160,6 +1168,21 @@ impl Solver {
                 .map(|c| self.resting_scale * c.press)
                 .fold(0.0, f64::max);
         let count = self.resting.len();
+        // Lowest first along gravity: a forward sweep carries a bed's weight down to its floor,
+        // the backward one after it carries the floor's push back up.
+        if ctx.settings.gravity != DVec3::ZERO {
+            let up = -ctx.settings.gravity;
+            let segments = &self.segments;
+            let height = |c: &RestingContact| {
+                let a = &segments[c.a as usize];
+                (a.position + c.normal * a.radius()).dot(up)
+            };
+            self.resting.sort_unstable_by(|x, y| {
+                height(x)
+                    .total_cmp(&height(y))
+                    .then((x.a, x.b).cmp(&(y.a, y.b)))
+            });
+        }
         // Start from the last solve's impulses: a bed at rest needs the same ones step after
         // step, and a wedged bed's load takes Gauss–Seidel far more sweeps to find than one.
         if !self.warm.is_empty() {
@@ -1178,8 +1201,12 @@ impl Solver {
                 }
             }
         }
+        let mut last_change = 0.0f64;
         for sweep in 0..RESTING_SWEEPS {
             let mut largest = 0.0f64;
+            for c in &mut self.resting {
+                c.before = c.impulse;
+            }
             // Forward and backward in turn (symmetric Gauss–Seidel): a load carried down a
             // stack reaches its base in one pair of sweeps whichever way the stack is listed.
             for k in 0..count {
@@ -1200,6 +1227,39 @@ impl Solver {
             }
             if largest <= threshold {
                 break;
+            }
+            // Nonsmooth nonlinear conjugate gradients (Silcowitz, Niebe and Erleben, 2010): each
+            // sweep's change of the impulses is a descent direction; adding the last direction
+            // again, in proportion to how little the change shrank, carries a wedged bed's load
+            // through in far fewer sweeps (Gauss–Seidel alone crawls there: a pit of 1000
+            // spheres still moved by 1e-3 m/s a sweep after 4096 sweeps). Restarted whenever
+            // the change grows.
+            let change: f64 = self
+                .resting
+                .iter()
+                .map(|c| (c.impulse - c.before) * (c.impulse - c.before))
+                .sum();
+            let beta = if last_change > 0.0 {
+                change / last_change
+            } else {
+                0.0
+            };
+            last_change = change;
+            for c in &mut self.resting {
+                let step = c.impulse - c.before;
+                if beta > 0.0 && beta < 1.0 {
+                    let next = (c.impulse + beta * c.direction).max(0.0);
+                    let extra = next - c.impulse;
+                    if extra != 0.0 {
+                        c.impulse = next;
+                        let (a, b) = (c.a as usize, c.b as usize);
+                        self.segments[a].velocity -= c.normal * (extra * c.inverse_mass_a);
+                        self.segments[b].velocity += c.normal * (extra * c.inverse_mass_b);
+                    }
+                    c.direction = beta * c.direction + step;
+                } else {
+                    c.direction = step;
+                }
             }
         }
         self.clear_touched();

@@ -78,14 +78,22 @@ impl Measurement {
     }
 }
 
-/// Steps `scene` with our engine: one step of `dt` untimed (warming up, as for rapier), then
-/// `steps` steps, each timed, and with `profile` each step's phases too (a few clock reads
-/// per step).
-pub fn measure_ours(scene: &SceneDesc, steps: u32, dt: f64, profile: bool) -> Measurement {
+/// Steps `scene` with our engine: `settle` steps of `dt` untimed (at least one, warming up,
+/// as for rapier), then `steps` steps, each timed, and with `profile` each step's phases too
+/// (a few clock reads per step).
+pub fn measure_ours(
+    scene: &SceneDesc,
+    settle: u32,
+    steps: u32,
+    dt: f64,
+    profile: bool,
+) -> Measurement {
     let mut world: World = scene.build().expect("bench scenes are valid");
     world.set_profiling(profile);
     let kinetic_before = world.kinetic_energy();
-    world.step(dt).expect("dt is valid");
+    for _ in 0..settle.max(1) {
+        world.step(dt).expect("dt is valid");
+    }
     let (mut collisions, mut deferred, mut toi_tests) = (0u64, 0u64, 0u64);
     let mut seconds = 0.0;
     let mut phases = profile.then(StepProfile::default);
@@ -132,11 +140,12 @@ pub struct RapierSetting {
     pub flat_walls: bool,
 }
 
-/// Steps `scene` with rapier3d 0.36: one step of `dt` untimed, then `steps` steps, each
-/// timed, single-threaded, as `setting` says.
+/// Steps `scene` with rapier3d 0.36: `settle` steps of `dt` untimed (at least one), then
+/// `steps` steps, each timed, single-threaded, as `setting` says.
 #[cfg(feature = "rapier")]
 pub fn measure_rapier(
     scene: &SceneDesc,
+    settle: u32,
     steps: u32,
     dt: f64,
     setting: RapierSetting,
@@ -160,7 +169,9 @@ pub fn measure_rapier(
     let kinetic_before = world.kinetic_energy();
     // The first step builds rapier's broad-phase tree and every contact pair from nothing:
     // untimed, as ours is.
-    world.step();
+    for _ in 0..settle.max(1) {
+        world.step();
+    }
     let mut seconds = 0.0;
     for _ in 0..steps {
         let started = Instant::now();

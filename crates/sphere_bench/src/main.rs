@@ -2,11 +2,12 @@
 //! several sizes, ours against rapier3d 0.36 (with `--features rapier`), as a markdown table.
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
-//!         [--steps 60] [--scenes shower,gas,pile] [--repeat 1] [--phases]
+//!         [--steps 60] [--settle 1] [--scenes shower,gas,pile] [--repeat 1] [--phases]
 //!         [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]
 //!
-//! Each run steps once untimed (both engines build their structures on the first step), then
-//! times each of `--steps` steps. With `--repeat N` each engine runs each scene N times, the
+//! Each run steps once untimed (both engines build their structures on the first step; with
+//! `--settle N`, N times: the pile's bed at rest, say, rather than its landing), then times
+//! each of `--steps` steps. With `--repeat N` each engine runs each scene N times, the
 //! engines taking turns (ours, rapier with CCD, rapier without, then again), and the fastest
 //! run of each is reported: on a shared machine the least disturbed run is the best estimate
 //! of the cost, and taking turns spreads any drift of the machine over all three.
@@ -28,6 +29,8 @@ const DT: f64 = 1.0 / 60.0;
 struct Options {
     sizes: Vec<u32>,
     steps: u32,
+    /// Untimed steps before the timed ones (at least 1).
+    settle: u32,
     scenes: Vec<String>,
     repeat: u32,
     phases: bool,
@@ -58,6 +61,7 @@ fn parse() -> Result<Options, String> {
     let mut options = Options {
         sizes: vec![1_000, 10_000, 100_000],
         steps: 60,
+        settle: 1,
         scenes: vec!["shower".into(), "gas".into()],
         repeat: 1,
         phases: false,
@@ -78,6 +82,7 @@ fn parse() -> Result<Options, String> {
             }
             "--steps" => options.steps = positive(value()?, flag)?,
             "--repeat" => options.repeat = positive(value()?, flag)?,
+            "--settle" => options.settle = positive(value()?, flag)?,
             "--scenes" => {
                 options.scenes = value()?.split(',').map(str::to_owned).collect();
                 if let Some(bad) = options
@@ -100,7 +105,7 @@ fn parse() -> Result<Options, String> {
             "--rapier-flat-walls" => options.rapier_flat_walls = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--scenes shower,gas,pile] [--repeat 1] [--phases] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile] [--repeat 1] [--phases] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
                 );
                 std::process::exit(0);
             }
@@ -146,9 +151,9 @@ fn main() {
     };
     let rapier = cfg!(feature = "rapier");
     println!(
-        "{} steps of 1/60 s per run after one untimed step, single-threaded, fastest of {} \
+        "{} steps of 1/60 s per run after {} untimed step(s), single-threaded, fastest of {} \
          run(s). Cost is wall time per sphere per step.\n",
-        options.steps, options.repeat
+        options.steps, options.settle, options.repeat
     );
     if rapier {
         println!(
@@ -185,13 +190,14 @@ fn main() {
             for _ in 0..options.repeat.max(1) {
                 keep_faster(
                     &mut ours,
-                    measure_ours(&scene, options.steps, DT, options.phases),
+                    measure_ours(&scene, options.settle, options.steps, DT, options.phases),
                 );
                 #[cfg(feature = "rapier")]
                 {
                     let rapier = |ccd| {
                         sphere_bench::measure_rapier(
                             &scene,
+                            options.settle,
                             options.steps,
                             DT,
                             sphere_bench::RapierSetting {

@@ -13,7 +13,17 @@
 //! a resting impulse earlier at that instant, with that contact ([`InstantContacts`]): a
 //! sphere wedged between a fixed sphere and one pressing on it takes the load at once.
 //! Touching pairs closing slowly at the start of the step are resting contacts, solved
-//! together by projected Gauss–Seidel before any impact.
+//! together before any impact (projected Gauss–Seidel, swept lowest first, warm-started from
+//! the last step's impulses and accelerated by nonsmooth nonlinear conjugate gradients).
+//!
+//! What counts as pressed: a pair is pressed by the bodies' own accelerations along its
+//! normal (a ball on a floor by its weight; balls side by side on a floor not at all, so
+//! their meetings keep their restitution), and a contact that took a load in the last step's
+//! resting solve by their whole accelerations (in a pile the weight pushes sideways too,
+//! through the neighbours: a sphere wedged against a wall). Pairs that touch or nearly touch
+//! but are not resting contacts join the solve as guards, each allowed to close as fast as it
+//! already does: the solve may not push them together itself. Within the step a contact's
+//! load from the solve counts as its press, for its restitution and its creep.
 
 use std::cmp::Ordering;
 
@@ -211,9 +221,10 @@ pub(crate) struct Solver {
     /// it, worked out once per step from the tolerance.
     apart: Apart,
     resting: Vec<RestingContact>,
-    /// Pairs apart by less than [`Solver::near_reach`] beyond the contact band at the start of
-    /// the step: `(a, b, normal, distance)`. Those the resting solve would push together become
-    /// speculative contacts (see [`Solver::add_guards`]).
+    /// Pairs touching but not resting, or apart by less than [`Solver::near_reach`] beyond the
+    /// contact band with a body that rested in the last step, at the start of the step:
+    /// `(a, b, normal, distance)`. Those with a body in a resting contact join the resting
+    /// solve as guards (see [`Solver::add_guards`]).
     near: Vec<(u32, u32, DVec3, f64)>,
     /// How far beyond the contact band a pair may be and still close within the step at the
     /// resting speed of the largest acceleration.
@@ -995,9 +1006,10 @@ impl Solver {
         }
     }
 
-    /// Whether [`Solver::resting_contact`] may find `(i, j)` resting: resting contacts are
-    /// sought, and the pair touches (or both are fixed). A glance, inlined into the first
-    /// pass, which spares most pairs the call.
+    /// Whether [`Solver::resting_contact`] may act on `(i, j)`: resting contacts are sought,
+    /// and the pair touches (or both are fixed), or is near (see [`Solver::near`]) with a body
+    /// that rested in the last step. A glance, inlined into the first pass, which spares most
+    /// pairs the call.
     #[inline(always)]
     fn may_rest(&self, i: usize, j: usize, ctx: &StepContext<'_>) -> bool {
         let (si, sj) = (&self.segments[i], &self.segments[j]);
@@ -1020,7 +1032,8 @@ impl Solver {
     }
 
     /// If `(i, j)` touch (within [`contact_band`]) and approach no faster than the
-    /// resting speed, records them as a resting contact.
+    /// resting speed, records them as a resting contact. A touching pair that is not one, or
+    /// a near one, is listed in [`Solver::near`] for [`Solver::add_guards`].
     /// A pair overlapping deeper than half the creep distance also gets a separating speed
     /// that undoes the excess over the step: the resting solve converges only so far, and
     /// without it a leftover approach below the creep speed would sink a stack for ever.

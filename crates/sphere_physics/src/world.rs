@@ -26,14 +26,17 @@ pub struct Settings {
     /// How two bodies' restitutions combine.
     pub restitution_combine: CombineRule,
     /// A collision whose approach speed is at most this many steps' worth of the acceleration
-    /// pressing the pair together (the larger component of either body's own acceleration,
-    /// gravity plus applied force over mass, along their line of centres) is a resting contact
-    /// and is resolved with restitution 0: a ball at rest on another, or in a pile, stays at
-    /// rest instead of jittering, and a bouncing ball comes to rest instead of bouncing ever
-    /// lower forever. A ball on a floor under Earth gravity at 60 Hz: 0.25 m/s (the step here is
-    /// each substep's: with 4 substeps, 0.06 m/s). Balls side by
-    /// side under gravity (a cradle) do not press, so they never rest on each other. Default
-    /// 1.5; 0 disables it.
+    /// pressing the pair together is a resting contact and is resolved with restitution 0: a
+    /// ball at rest on another, or in a pile, stays at rest instead of jittering, and a
+    /// bouncing ball comes to rest instead of bouncing ever lower forever. What presses a pair:
+    /// the larger component of either body's own acceleration (gravity plus applied force over
+    /// mass) along their line of centres; for a contact that took a load in the last step's
+    /// resting solve, the larger of the two whole accelerations (in a pile the weight pushes
+    /// sideways too, through the neighbours); and within a step, a contact's load from that
+    /// step's resting solve. A ball on a floor under Earth gravity at 60 Hz: 0.25 m/s (the
+    /// step here is each substep's: with 4 substeps, 0.06 m/s). Balls side by side (a cradle,
+    /// hanging or on a floor) press each other only if something pushes them together, so
+    /// their meetings keep their restitution. Default 1.5; 0 disables it.
     pub resting_factor: f64,
     /// Within a step, two touching bodies closing slower than this fraction of the resting
     /// speed (see `resting_factor`) are left to creep into each other until the next step's
@@ -41,9 +44,11 @@ pub struct Settings {
     /// thousands of ever smaller collisions. The overlap this allows is at most
     /// `creep_fraction · resting_factor · acceleration · dt²` (4e-5 m at 60 Hz under Earth
     /// gravity; `dt` is each substep's) beyond the band within which spheres count as touching
-    /// (a millionth of the smaller diameter, plus the tolerance); at the bottom of a pile, pressed by the spheres above harder than by its own
-    /// weight, a few times that (2.1 times in the README's example pile of 2000), undone over
-    /// the next steps. Default 0.01; 0 disables it. Without gravity or forces it never applies.
+    /// (a millionth of the smaller diameter, plus the tolerance); at the bottom of a pile,
+    /// pressed by the spheres above harder than by its own weight (the creep grows with a
+    /// contact's load), a few times that (3.1 times in the README's example pile of 2000),
+    /// undone over the next steps. Default 0.01; 0 disables it. Without gravity or forces it
+    /// never applies.
     pub creep_fraction: f64,
     /// Each [`World::step`] is taken as this many equal substeps (default 1). Integration error
     /// that grows with the step, such as a tethered pendulum's energy error at each impact

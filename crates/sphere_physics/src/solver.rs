@@ -179,7 +179,7 @@ const PAIR_BATCH: usize = 16;
 /// How many times [`Settings::max_collisions_per_body`] one body may take in a step (the
 /// world's budget is that setting times the dynamic bodies): 1024 by default, where a sphere
 /// at the bottom of the 100k-sphere shower benchmark's pile takes up to 381.
-const BODY_SHARE: u32 = 16;
+const BODY_SHARE: u32 = 64;
 
 /// Half the largest f64: two numbers below it in size add to a finite one.
 const HALF_RANGE: f64 = f64::MAX / 2.0;
@@ -221,6 +221,8 @@ pub(crate) struct Solver {
     /// it, worked out once per step from the tolerance.
     apart: Apart,
     resting: Vec<RestingContact>,
+    /// Scratch for [`Solver::fall_back`]: the pairs it has solved, sorted.
+    fallback_pairs: Vec<(u32, u32)>,
     /// Pairs touching but not resting, or apart by less than [`Solver::near_reach`] beyond the
     /// contact band with a body that rested in the last step, at the start of the step:
     /// `(a, b, normal, distance)`. Those with a body in a resting contact join the resting
@@ -422,6 +424,10 @@ fn moving(segments: &[Segment]) -> impl Fn(u32) -> bool + Copy + '_ {
 
 /// How many bodies ahead the write-back asks for a body's segment.
 const WRITE_BACK_AHEAD: usize = 16;
+
+/// The most rounds of [`Solver::fall_back`]'s solve (each adds the pairs the last brought
+/// together).
+const FALLBACK_ROUNDS: usize = 4;
 
 /// The most Gauss–Seidel sweeps over the resting contacts in one step.
 const RESTING_SWEEPS: u32 = 64;
@@ -667,6 +673,7 @@ impl Solver {
             .max_collisions_per_body
             .saturating_mul(dynamic.max(1));
         let mut events = 0u32;
+        let mut fell_back = false;
         // One body's share: a sphere caught between fixed ones (wedged between two it
         // overlaps, or pressed by a kinematic one) bounces between them without end, and
         // would otherwise spend the whole budget, leaving every other sphere's collisions to
@@ -682,6 +689,15 @@ impl Solver {
                 continue;
             }
             if events >= budget {
+                if !fell_back {
+                    fell_back = true;
+                    self.fall_back(event.time, ctx, stats);
+                    // The impacts still queued between bodies the fallback left alone are
+                    // counted as deferred below; the rest are stale now.
+                    if !self.is_current(&event) {
+                        continue;
+                    }
+                }
                 stats.collisions_deferred = stats.collisions_deferred.saturating_add(1);
                 continue;
             }
@@ -1171,18 +1187,158 @@ impl Solver {
         (overlap - slop).max(0.0) / ctx.dt
     }
 
-    /// Solves all resting contacts at once (projected Gauss–Seidel, restitution 0), then marks
-    /// the bodies it changed as touched.
-    fn solve_resting(&mut self, ctx: &StepContext<'_>, stats: &mut StepStats) {
-        let threshold = 1e-9
-            * self
-                .resting
-                .iter()
-                .map(|c| self.resting_scale * c.press)
-                .fold(0.0, f64::max);
-        let count = self.resting.len();
-        // Lowest first along gravity: a forward sweep carries a bed's weight down to its floor,
-        // the backward one after it carries the floor's push back up.
+    /// When the step's collision budget runs out at time `t` (a crowd landing at once, where
+    /// each collision brings on more): every dynamic body is moved to `t`, and every pair that
+    /// could meet in the rest of the step is solved at once, as resting contacts are, each
+    /// allowed to close no further than half the contact band short of touching by the step's
+    /// end (an overlapping one to part as a resting contact does): restitution 0, momentum
+    /// kept, no energy gained beyond the overlaps' undoing. The impacts left in the queue are
+    /// then stale, and the step drifts to its end. Bodies on strings are left to the budget's
+    /// deferral as before (the fallback is skipped when any body hangs on a string).
+    fn fall_back(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        if self.strings || t >= ctx.dt {
+            return;
+        }
+        let rest = ctx.dt - t;
+        for segment in &mut self.segments {
+            segment.advance_to(t);
+        }
+        self.resting.clear();
+        self.fallback_pairs.clear();
+        let mut bodies = std::mem::take(&mut self.local_bodies);
+        bodies.clear();
+        bodies.extend(
+            (0..self.segments.len() as u32).filter(|&k| !self.segments[k as usize].is_fixed()),
+        );
+        let mut candidates = std::mem::take(&mut self.candidates);
+        // The solve changes velocities, which may bring other pairs together: a few rounds,
+        // each adding the pairs the last one's changes could bring within the band.
+        for _round in 0..FALLBACK_ROUNDS {
+            let known = self.resting.len();
+            self.clear_touched();
+            for &k in &bodies {
+                self.touch(k);
+            }
+            for &k in &bodies {
+                let k = k as usize;
+                candidates.clear();
+                self.broad
+                    .collect_overlapping(k, &self.boxes, &mut candidates);
+                for &m in &candidates {
+                    let m = m as usize;
+                    // Each pair once: from its first body of this round's.
+                    if m == k || (m < k && self.is_touched(m)) {
+                        continue;
+                    }
+                    let (a, b) = (k.min(m), k.max(m));
+                    let key = (a as u32, b as u32);
+                    if self.fallback_pairs.binary_search(&key).is_ok() {
+                        continue;
+                    }
+                    let (sa, sb) = (&self.segments[a], &self.segments[b]);
+                    if sa.is_fixed() && sb.is_fixed() {
+                        continue;
+                    }
+                    let d = sb.position - sa.position;
+                    let distance = d.length();
+                    if distance == 0.0 {
+                        continue;
+                    }
+                    let normal = d / distance;
+                    let reach = sa.radius() + sb.radius();
+                    let band = contact_band(sa, sb, ctx.settings);
+                    let approach = -(sb.velocity - sa.velocity).dot(normal);
+                    let gap = distance - reach;
+                    // Pairs that cannot come within half the band by the step's end need
+                    // nothing (yet).
+                    if approach * rest < gap - 0.5 * band {
+                        continue;
+                    }
+                    let press = self.start_press(a, b, normal);
+                    let allowed = if gap > 0.0 {
+                        (gap - 0.5 * band).max(0.0) / rest
+                    } else {
+                        -self.correction(-gap, band, press, ctx)
+                    };
+                    self.tested.push(key);
+                    self.resting.push(RestingContact {
+                        a: key.0,
+                        b: key.1,
+                        normal,
+                        impulse: 0.0,
+                        inverse_mass_a: self.extra(a).inverse_mass,
+                        inverse_mass_b: self.extra(b).inverse_mass,
+                        bias: -allowed,
+                        press,
+                        speculative: gap > band,
+                        before: 0.0,
+                        direction: 0.0,
+                    });
+                }
+            }
+            if self.resting.len() == known {
+                break;
+            }
+            self.fallback_pairs
+                .extend(self.resting[known..].iter().map(|c| (c.a, c.b)));
+            self.fallback_pairs.sort_unstable();
+            self.order_resting(ctx);
+            self.sweep_resting(0.0);
+            bodies.clear();
+            self.clear_touched();
+            for k in 0..self.resting.len() {
+                let c = self.resting[k];
+                if c.impulse > 0.0 {
+                    self.touch(c.a);
+                    self.touch(c.b);
+                }
+            }
+            bodies.extend_from_slice(&self.touched);
+            // Their boxes from now on, for the next round's candidates.
+            for &k in &bodies {
+                let k = k as usize;
+                self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+                self.broad.update(k, &self.boxes[k]);
+            }
+        }
+        self.candidates = candidates;
+        self.local_bodies = bodies;
+        self.clear_touched();
+        let resting = std::mem::take(&mut self.resting);
+        for c in resting.iter().filter(|c| c.impulse > 0.0) {
+            self.touch(c.a);
+            self.touch(c.b);
+            if c.speculative {
+                continue;
+            }
+            let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
+            stats.collisions = stats.collisions.saturating_add(1);
+            stats.resting_contacts = stats.resting_contacts.saturating_add(1);
+            self.collisions.push(collision(
+                self.extra(a).id,
+                self.extra(b).id,
+                ctx.start_time + t,
+                c.normal,
+                sa.position + c.normal * sa.radius(),
+                c.impulse,
+                true,
+            ));
+        }
+        self.resting = resting;
+        self.resting.clear();
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            self.versions[k] += 1;
+            self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+            self.check_bounded(k);
+        }
+        self.clear_touched();
+        stats.fell_back = true;
+    }
+
+    /// Orders the resting contacts lowest first along gravity: a forward sweep carries a bed's
+    /// weight down to its floor, the backward one after it carries the floor's push back up.
+    fn order_resting(&mut self, ctx: &StepContext<'_>) {
         if ctx.settings.gravity != DVec3::ZERO {
             let up = -ctx.settings.gravity;
             let segments = &self.segments;
@@ -1196,24 +1352,12 @@ impl Solver {
                     .then((x.a, x.b).cmp(&(y.a, y.b)))
             });
         }
-        // Start from the last solve's impulses: a bed at rest needs the same ones step after
-        // step, and a wedged bed's load takes Gauss–Seidel far more sweeps to find than one.
-        if !self.warm.is_empty() {
-            for k in 0..count {
-                let c = &self.resting[k];
-                let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
-                let key = (a.min(b), a.max(b));
-                if let Ok(w) = self.warm.binary_search_by_key(&key, |w| (w.0, w.1)) {
-                    let impulse = self.warm[w].2 * ctx.dt;
-                    let c = &mut self.resting[k];
-                    c.impulse = impulse;
-                    let (a, b, normal) = (c.a as usize, c.b as usize, c.normal);
-                    let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
-                    self.segments[a].velocity -= normal * (impulse * ima);
-                    self.segments[b].velocity += normal * (impulse * imb);
-                }
-            }
-        }
+    }
+
+    /// Sweeps over the resting contacts (projected Gauss–Seidel, accelerated) until no
+    /// impulse changes a relative speed by more than `threshold`, or [`RESTING_SWEEPS`] times.
+    fn sweep_resting(&mut self, threshold: f64) {
+        let count = self.resting.len();
         let mut last_change = 0.0f64;
         for sweep in 0..RESTING_SWEEPS {
             let mut largest = 0.0f64;
@@ -1275,6 +1419,38 @@ impl Solver {
                 }
             }
         }
+    }
+
+    /// Solves all resting contacts at once (projected Gauss–Seidel, restitution 0), then marks
+    /// the bodies it changed as touched.
+    fn solve_resting(&mut self, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        let threshold = 1e-9
+            * self
+                .resting
+                .iter()
+                .map(|c| self.resting_scale * c.press)
+                .fold(0.0, f64::max);
+        let count = self.resting.len();
+        self.order_resting(ctx);
+        // Start from the last solve's impulses: a bed at rest needs the same ones step after
+        // step, and a wedged bed's load takes Gauss–Seidel far more sweeps to find than one.
+        if !self.warm.is_empty() {
+            for k in 0..count {
+                let c = &self.resting[k];
+                let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
+                let key = (a.min(b), a.max(b));
+                if let Ok(w) = self.warm.binary_search_by_key(&key, |w| (w.0, w.1)) {
+                    let impulse = self.warm[w].2 * ctx.dt;
+                    let c = &mut self.resting[k];
+                    c.impulse = impulse;
+                    let (a, b, normal) = (c.a as usize, c.b as usize, c.normal);
+                    let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
+                    self.segments[a].velocity -= normal * (impulse * ima);
+                    self.segments[b].velocity += normal * (impulse * imb);
+                }
+            }
+        }
+        self.sweep_resting(threshold);
         self.clear_touched();
         let resting = std::mem::take(&mut self.resting);
         for c in resting.iter().filter(|c| c.impulse > 0.0) {

@@ -22,11 +22,17 @@ pub struct StepStats {
     /// [`Settings::resting_factor`](crate::Settings::resting_factor) steps, resolved with
     /// restitution 0 so that bodies at rest stay at rest.
     pub resting_contacts: u32,
-    /// Impacts found but not resolved because the step's budget
-    /// ([`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)) ran out
-    /// (an impact found again after one of its bodies changed counts again). Non-zero means the
-    /// step was cut short: bodies may be left overlapping until the next step.
+    /// Impacts found but not resolved because a body's share of the step's budget
+    /// ([`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)) ran out,
+    /// or the whole budget did with bodies on strings, or between bodies the fallback solve
+    /// left alone (an impact found again after one of its bodies changed counts again).
+    /// Non-zero means the step was cut short: bodies may be left overlapping until the next
+    /// step.
     pub collisions_deferred: u32,
+    /// The step's collision budget ran out and the rest of the step was solved at once,
+    /// restitution 0 (see
+    /// [`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)).
+    pub fell_back: bool,
     /// Pairs handed to the time-of-impact method. A pair closing all along the step and still
     /// apart at its end (beyond contact by the tolerance and a millionth of the reach) is not
     /// handed to a built-in method, which would report no impact (unless it moves more than a

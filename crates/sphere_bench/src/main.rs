@@ -220,7 +220,7 @@ fn main() {
             if ours.deferred > 0 {
                 eprintln!(
                     "sphere-bench: warning: {scene_name} {n}: {} collisions deferred to later \
-                     steps (a step's collision budget ran out)",
+                     steps (a body's share of a step's collision budget ran out)",
                     ours.deferred
                 );
             }

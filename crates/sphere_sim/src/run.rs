@@ -161,6 +161,9 @@ pub struct RunStats {
     /// Impacts left to the next step by the per-step budget
     /// (`StepStats::collisions_deferred`).
     pub collisions_deferred: u64,
+    /// Steps whose collision budget ran out, their rest solved at once
+    /// (`StepStats::fell_back`).
+    pub steps_fell_back: u64,
     /// Time-of-impact tests.
     pub toi_tests: u64,
     /// Bisection iterations (0 for exact).
@@ -296,6 +299,7 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
     let initial = Snapshot::of(&world);
     let planned = plan.total();
     let mut totals = (0u64, 0u64, 0u64, 0u64, 0u64);
+    let mut fell_back = 0u64;
     let mut max_overlap_seen = world.max_overlap();
 
     let mut stepping = std::time::Duration::ZERO;
@@ -312,6 +316,7 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
         totals.0 += u64::from(stats.collisions);
         totals.1 += u64::from(stats.resting_contacts);
         totals.2 += u64::from(stats.collisions_deferred);
+        fell_back += u64::from(stats.fell_back);
         totals.3 += stats.toi_tests;
         totals.4 += stats.toi_iterations;
         max_overlap_seen = max_overlap_seen.max(stats.max_overlap);
@@ -351,6 +356,7 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
             collisions: totals.0,
             resting_contacts: totals.1,
             collisions_deferred: totals.2,
+            steps_fell_back: fell_back,
             toi_tests: totals.3,
             toi_iterations: totals.4,
             kinetic_energy: end.kinetic_energy,

@@ -1358,12 +1358,14 @@ impl Solver {
     /// impulse changes a relative speed by more than `threshold`, or [`RESTING_SWEEPS`] times.
     fn sweep_resting(&mut self, threshold: f64) {
         let count = self.resting.len();
+        for c in &mut self.resting {
+            c.before = c.impulse;
+        }
         let mut last_change = 0.0f64;
         for sweep in 0..RESTING_SWEEPS {
             let mut largest = 0.0f64;
-            for c in &mut self.resting {
-                c.before = c.impulse;
-            }
+            // How far the sweep moved the impulses (squared), for the acceleration below.
+            let mut change = 0.0f64;
             // Forward and backward in turn (symmetric Gauss–Seidel): a load carried down a
             // stack reaches its base in one pair of sweeps whichever way the stack is listed.
             for k in 0..count {
@@ -1374,13 +1376,15 @@ impl Solver {
                 let speed =
                     (self.segments[b].velocity - self.segments[a].velocity).dot(c.normal) - c.bias;
                 let next = (c.impulse - speed / (ima + imb)).max(0.0);
-                let change = next - c.impulse;
-                if change != 0.0 {
+                let step = next - c.impulse;
+                if step != 0.0 {
                     c.impulse = next;
-                    self.segments[a].velocity -= c.normal * (change * ima);
-                    self.segments[b].velocity += c.normal * (change * imb);
-                    largest = largest.max((change * (ima + imb)).abs());
+                    self.segments[a].velocity -= c.normal * (step * ima);
+                    self.segments[b].velocity += c.normal * (step * imb);
+                    largest = largest.max((step * (ima + imb)).abs());
                 }
+                let moved = c.impulse - c.before;
+                change += moved * moved;
             }
             if largest <= threshold {
                 break;
@@ -1391,20 +1395,16 @@ impl Solver {
             // through in far fewer sweeps (Gauss–Seidel alone crawls there: a pit of 1000
             // spheres still moved by 1e-3 m/s a sweep after 4096 sweeps). Restarted whenever
             // the change grows.
-            let change: f64 = self
-                .resting
-                .iter()
-                .map(|c| (c.impulse - c.before) * (c.impulse - c.before))
-                .sum();
             let beta = if last_change > 0.0 {
                 change / last_change
             } else {
                 0.0
             };
             last_change = change;
+            let accelerate = beta > 0.0 && beta < 1.0;
             for c in &mut self.resting {
                 let step = c.impulse - c.before;
-                if beta > 0.0 && beta < 1.0 {
+                if accelerate {
                     let next = (c.impulse + beta * c.direction).max(0.0);
                     let extra = next - c.impulse;
                     if extra != 0.0 {
@@ -1417,6 +1417,7 @@ impl Solver {
                 } else {
                     c.direction = step;
                 }
+                c.before = c.impulse;
             }
         }
     }

@@ -1103,20 +1103,34 @@ impl Solver {
             return false;
         }
         self.tested.push((i as u32, j as u32));
+        self.push_resting(i as u32, j as u32, normal, bias, press, false);
+        true
+    }
+
+    /// Adds pair `(a, b)` (solver indices, `a < b`) to the resting contacts, with no impulse
+    /// yet.
+    fn push_resting(
+        &mut self,
+        a: u32,
+        b: u32,
+        normal: DVec3,
+        bias: f64,
+        press: f64,
+        speculative: bool,
+    ) {
         self.resting.push(RestingContact {
-            a: i as u32,
-            b: j as u32,
+            a,
+            b,
             normal,
             impulse: 0.0,
-            inverse_mass_a: self.extra(i).inverse_mass,
-            inverse_mass_b: self.extra(j).inverse_mass,
+            inverse_mass_a: self.extra(a as usize).inverse_mass,
+            inverse_mass_b: self.extra(b as usize).inverse_mass,
             bias,
             press,
-            speculative: false,
+            speculative,
             before: 0.0,
             direction: 0.0,
         });
-        true
     }
 
     /// Whether touching pair `(i, j)` took an impulse in the last step's resting solve.
@@ -1163,19 +1177,7 @@ impl Solver {
             if allowed > self.resting_scale * press {
                 continue;
             }
-            self.resting.push(RestingContact {
-                a: i,
-                b: j,
-                normal,
-                impulse: 0.0,
-                inverse_mass_a: self.extra(a).inverse_mass,
-                inverse_mass_b: self.extra(b).inverse_mass,
-                bias: -allowed,
-                press,
-                speculative: distance > reach + band,
-                before: 0.0,
-                direction: 0.0,
-            });
+            self.push_resting(i, j, normal, -allowed, press, distance > reach + band);
         }
         self.clear_touched();
     }
@@ -1261,19 +1263,7 @@ impl Solver {
                         -self.correction(-gap, band, press, ctx)
                     };
                     self.tested.push(key);
-                    self.resting.push(RestingContact {
-                        a: key.0,
-                        b: key.1,
-                        normal,
-                        impulse: 0.0,
-                        inverse_mass_a: self.extra(a).inverse_mass,
-                        inverse_mass_b: self.extra(b).inverse_mass,
-                        bias: -allowed,
-                        press,
-                        speculative: gap > band,
-                        before: 0.0,
-                        direction: 0.0,
-                    });
+                    self.push_resting(key.0, key.1, normal, -allowed, press, gap > band);
                 }
             }
             if self.resting.len() == known {
@@ -1303,6 +1293,21 @@ impl Solver {
         }
         self.candidates = candidates;
         self.local_bodies = bodies;
+        self.record_resting(t, ctx, stats);
+        self.resting.clear();
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            self.versions[k] += 1;
+            self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+            self.check_bounded(k);
+        }
+        self.clear_touched();
+        stats.fell_back = true;
+    }
+
+    /// Touches the bodies of every resting contact that took an impulse, and records those
+    /// that touch (not the guards still apart) as resting collisions at time `t` of the step.
+    fn record_resting(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
         self.clear_touched();
         let resting = std::mem::take(&mut self.resting);
         for c in resting.iter().filter(|c| c.impulse > 0.0) {
@@ -1325,15 +1330,6 @@ impl Solver {
             ));
         }
         self.resting = resting;
-        self.resting.clear();
-        for ti in 0..self.touched.len() {
-            let k = self.touched[ti] as usize;
-            self.versions[k] += 1;
-            self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
-            self.check_bounded(k);
-        }
-        self.clear_touched();
-        stats.fell_back = true;
     }
 
     /// Orders the resting contacts lowest first along gravity: a forward sweep carries a bed's
@@ -1452,27 +1448,8 @@ impl Solver {
             }
         }
         self.sweep_resting(threshold);
-        self.clear_touched();
+        self.record_resting(0.0, ctx, stats);
         let resting = std::mem::take(&mut self.resting);
-        for c in resting.iter().filter(|c| c.impulse > 0.0) {
-            self.touch(c.a);
-            self.touch(c.b);
-            if c.speculative {
-                continue;
-            }
-            let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
-            stats.collisions = stats.collisions.saturating_add(1);
-            stats.resting_contacts = stats.resting_contacts.saturating_add(1);
-            self.collisions.push(collision(
-                self.extra(a).id,
-                self.extra(b).id,
-                ctx.start_time,
-                c.normal,
-                sa.position + c.normal * sa.radius(),
-                c.impulse,
-                true,
-            ));
-        }
         self.next_warm.clear();
         self.loads.clear();
         for c in resting.iter().filter(|c| c.impulse > 0.0) {

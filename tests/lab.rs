@@ -846,6 +846,7 @@ fn every_scene_file_gets_a_ground_its_spheres_do_not_fall_through() {
             "sphere_shower" | "stress_shower" => Ground::Open,
             // Walls too large to draw: a plane on the bottom wall's face.
             "gas_box" => Ground::Plane(-5.0),
+            "ball_pit" => Ground::Plane(0.0),
             // Nothing falls freely: a plane a little below the spheres.
             _ => {
                 Ground::Plane(stage.low.y - 0.25 * (stage.high - stage.low).max_element().max(1.0))

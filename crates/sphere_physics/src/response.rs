@@ -382,6 +382,38 @@ fn solve_active(
     lambda[..n].iter().all(|l| l.is_finite()).then_some(lambda)
 }
 
+/// Nonsmooth nonlinear conjugate gradients (Silcowitz, Niebe and Erleben, 2010), for a
+/// projected Gauss–Seidel solve: each sweep's change of the impulses is a descent direction,
+/// and adding the last direction again, in proportion to how little the change shrank, carries
+/// a wedged bed's load through in far fewer sweeps. After a sweep that moved the impulses by
+/// `moved` (squared), against `last` the sweep before: the factor to add the last direction
+/// with, or `None` to restart (the change grew, or there is no last direction).
+pub(crate) fn conjugate_factor(moved: f64, last: f64) -> Option<f64> {
+    let beta = if last > 0.0 { moved / last } else { 0.0 };
+    (beta > 0.0 && beta < 1.0).then_some(beta)
+}
+
+/// One contact's part of [`conjugate_factor`]'s acceleration: its `impulse` with `beta` times
+/// its `direction` added (never below 0), and the direction updated with the sweep's `step`.
+pub(crate) fn conjugate_step(
+    impulse: f64,
+    step: f64,
+    direction: &mut f64,
+    beta: Option<f64>,
+) -> f64 {
+    match beta {
+        Some(beta) => {
+            let next = (impulse + beta * *direction).max(0.0);
+            *direction = beta * *direction + step;
+            next
+        }
+        None => {
+            *direction = step;
+            impulse
+        }
+    }
+}
+
 /// The compression impulses by projected Gauss–Seidel, accelerated: sweeps over the contacts
 /// until no impulse changes by more than 1e-15 of `scale`, at most [`MAX_GROUP_SWEEPS`].
 /// `before` and `direction` are scratch, one per contact.
@@ -421,34 +453,20 @@ fn compress_iteratively(
         if largest_change <= 1e-15 * scale {
             break;
         }
-        // Nonsmooth nonlinear conjugate gradients, as the step's resting solve (a group of
-        // wedged contacts in a ball pit took the whole 256 sweeps in one solve in two): the
-        // last direction added again in proportion to how little the sweep's change shrank,
-        // restarted whenever it grows.
-        let beta = if last_moved > 0.0 {
-            moved / last_moved
-        } else {
-            0.0
-        };
+        // Accelerated as the step's resting solve is (a group of wedged contacts in a ball pit
+        // took the whole 256 sweeps in one solve in two).
+        let beta = conjugate_factor(moved, last_moved);
         last_moved = moved;
-        let accelerate = beta > 0.0 && beta < 1.0;
         for (((c, impulse), b), d) in contacts
             .iter()
             .zip(impulses.iter_mut())
             .zip(before.iter_mut())
             .zip(direction.iter_mut())
         {
-            let step = *impulse - *b;
-            if accelerate {
-                let next = (*impulse + beta * *d).max(0.0);
-                let extra = next - *impulse;
-                if extra != 0.0 {
-                    apply(velocities, c, extra);
-                    *impulse = next;
-                }
-                *d = beta * *d + step;
-            } else {
-                *d = step;
+            let next = conjugate_step(*impulse, *impulse - *b, d, beta);
+            if next != *impulse {
+                apply(velocities, c, next - *impulse);
+                *impulse = next;
             }
             *b = *impulse;
         }

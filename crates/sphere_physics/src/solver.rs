@@ -32,7 +32,9 @@ use glam::DVec3;
 use crate::broad_phase::{Aabb, BroadPhase};
 use crate::instant::InstantContacts;
 use crate::queue::{EventQueue, Timed};
-use crate::response::{GroupContact, resolve, resolve_simultaneous};
+use crate::response::{
+    GroupContact, conjugate_factor, conjugate_step, resolve, resolve_simultaneous,
+};
 use crate::{Body, Collision, Integrator, Settings, StepProfile, StepStats, Tether, TimeOfImpact};
 
 mod glance;
@@ -1385,33 +1387,19 @@ impl Solver {
             if largest <= threshold {
                 break;
             }
-            // Nonsmooth nonlinear conjugate gradients (Silcowitz, Niebe and Erleben, 2010): each
-            // sweep's change of the impulses is a descent direction; adding the last direction
-            // again, in proportion to how little the change shrank, carries a wedged bed's load
-            // through in far fewer sweeps (Gauss–Seidel alone crawls there: a pit of 1000
-            // spheres still moved by 1e-3 m/s a sweep after 4096 sweeps). Restarted whenever
-            // the change grows.
-            let beta = if last_change > 0.0 {
-                change / last_change
-            } else {
-                0.0
-            };
+            // Accelerated (nonsmooth nonlinear conjugate gradients, see `conjugate_factor`):
+            // Gauss–Seidel alone crawls on a wedged bed (a pit of 1000 spheres still moved by
+            // 1e-3 m/s a sweep after 4096 sweeps).
+            let beta = conjugate_factor(change, last_change);
             last_change = change;
-            let accelerate = beta > 0.0 && beta < 1.0;
             for c in &mut self.resting {
-                let step = c.impulse - c.before;
-                if accelerate {
-                    let next = (c.impulse + beta * c.direction).max(0.0);
+                let next = conjugate_step(c.impulse, c.impulse - c.before, &mut c.direction, beta);
+                if next != c.impulse {
                     let extra = next - c.impulse;
-                    if extra != 0.0 {
-                        c.impulse = next;
-                        let (a, b) = (c.a as usize, c.b as usize);
-                        self.segments[a].velocity -= c.normal * (extra * c.inverse_mass_a);
-                        self.segments[b].velocity += c.normal * (extra * c.inverse_mass_b);
-                    }
-                    c.direction = beta * c.direction + step;
-                } else {
-                    c.direction = step;
+                    c.impulse = next;
+                    let (a, b) = (c.a as usize, c.b as usize);
+                    self.segments[a].velocity -= c.normal * (extra * c.inverse_mass_a);
+                    self.segments[b].velocity += c.normal * (extra * c.inverse_mass_b);
                 }
                 c.before = c.impulse;
             }

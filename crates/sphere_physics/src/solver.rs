@@ -417,6 +417,8 @@ struct RestingContact {
     /// `Solver::solve_resting`).
     before: f64,
     direction: f64,
+    /// The contact point's height along gravity (see `Solver::order_resting`).
+    height: f64,
 }
 
 /// Whether segment `k` of `segments` is a dynamic body's (fixed ones join nothing).
@@ -1132,6 +1134,7 @@ impl Solver {
             speculative,
             before: 0.0,
             direction: 0.0,
+            height: 0.0,
         });
     }
 
@@ -1339,14 +1342,15 @@ impl Solver {
     fn order_resting(&mut self, ctx: &StepContext<'_>) {
         if ctx.settings.gravity != DVec3::ZERO {
             let up = -ctx.settings.gravity;
-            let segments = &self.segments;
-            let height = |c: &RestingContact| {
-                let a = &segments[c.a as usize];
-                (a.position + c.normal * a.radius()).dot(up)
-            };
+            // Each contact's height worked out once, not at each of the sort's comparisons
+            // (two segments read for each).
+            for c in &mut self.resting {
+                let a = &self.segments[c.a as usize];
+                c.height = (a.position + c.normal * a.radius()).dot(up);
+            }
             self.resting.sort_unstable_by(|x, y| {
-                height(x)
-                    .total_cmp(&height(y))
+                x.height
+                    .total_cmp(&y.height)
                     .then((x.a, x.b).cmp(&(y.a, y.b)))
             });
         }

@@ -167,9 +167,9 @@ fn main() {
             }
         );
         println!(
-            "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before | rapier KE after/before | our collisions, tests /sphere/step |"
+            "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before | rapier KE after/before | overlap left (m): ours / CCD / no CCD | our collisions, tests /sphere/step |"
         );
-        println!("|---|---|---|---|---|---|---|---|---|---|");
+        println!("|---|---|---|---|---|---|---|---|---|---|---|");
     } else {
         println!(
             "| scene | N | ours (exact) | collisions/step | KE after/before | overlap left | collisions, tests /sphere/step |"
@@ -233,6 +233,8 @@ fn main() {
                     "-".to_owned()
                 }
             };
+            #[cfg(feature = "rapier")]
+            let overlap = |m: &Measurement| format!("{:.1e}", m.max_overlap.unwrap_or(0.0));
             let work = |m: &Measurement| {
                 let (collisions, tests) = m.work_per_body_step();
                 format!("{collisions:.3}, {tests:.2}")
@@ -241,7 +243,7 @@ fn main() {
             {
                 let (ccd, plain) = (ccd.expect("one run"), plain.expect("one run"));
                 println!(
-                    "| {scene_name} | {n} | {} | {} | {} | {} | {} | {} | {} / {} | {} |",
+                    "| {scene_name} | {n} | {} | {} | {} | {} | {} | {} | {} / {} | {} / {} / {} | {} |",
                     cell(&ours),
                     cell(&ccd),
                     cell(&plain),
@@ -250,6 +252,9 @@ fn main() {
                     ke(&ours),
                     ke(&ccd),
                     ke(&plain),
+                    overlap(&ours),
+                    overlap(&ccd),
+                    overlap(&plain),
                     work(&ours),
                 );
             }

@@ -124,7 +124,8 @@ pub enum LabSystems {
     Keys,
     /// Actions are carried out.
     Act,
-    /// Captured frames are saved.
+    /// Captured frames are handed to the I/O task pool to be saved, and the outcomes of
+    /// those saved since are recorded.
     Save,
 }
 
@@ -143,6 +144,7 @@ impl Plugin for LabPlugin {
             .insert_resource(self.screenshots.clone())
             .insert_resource(self.autopilot.clone())
             .init_resource::<ScreenshotStatus>()
+            .init_resource::<screenshot::SavingScreenshots>()
             .add_message::<LabAction>()
             .add_message::<ScreenshotRequested>()
             .add_message::<FrameCaptured>()
@@ -159,7 +161,12 @@ impl Plugin for LabPlugin {
                     controls::keyboard_actions.in_set(LabSystems::Keys),
                     controls::autopilot.in_set(LabSystems::Input),
                     controls::apply_actions.in_set(LabSystems::Act),
-                    screenshot::save_captured_frames.in_set(LabSystems::Save),
+                    (
+                        screenshot::record_saved_screenshots,
+                        screenshot::save_captured_frames,
+                    )
+                        .chain()
+                        .in_set(LabSystems::Save),
                 ),
             );
         #[cfg(feature = "render")]

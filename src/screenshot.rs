@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use bevy::prelude::*;
+use bevy::tasks::{IoTaskPool, Task, futures::check_ready};
 use image::RgbaImage;
 
 use crate::stamp::stamp_time;
@@ -72,6 +73,8 @@ pub struct ScreenshotStatus {
     pub saved: u32,
     /// Screenshots that failed.
     pub failed: u32,
+    /// Screenshots being saved (stamped, encoded and written off the main thread).
+    pub saving: u32,
 }
 
 /// Stamps `time` onto `image` and saves it as a PNG in `folder` (created if missing), as
@@ -124,21 +127,41 @@ pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result
     unreachable!("an unbounded range has a free name")
 }
 
-/// Saves captured frames and records the outcome.
+/// Screenshots being saved on the I/O task pool: stamping a frame and encoding it as PNG
+/// take tens of milliseconds, which on the main thread would hold the window still for a
+/// frame or more.
+#[derive(Resource, Default)]
+pub(crate) struct SavingScreenshots(Vec<Task<(f64, Result<PathBuf, String>)>>);
+
+/// Starts saving each captured frame on the I/O task pool.
 pub(crate) fn save_captured_frames(
     mut frames: MessageReader<FrameCaptured>,
     settings: Res<ScreenshotSettings>,
+    mut saving: ResMut<SavingScreenshots>,
     mut status: ResMut<ScreenshotStatus>,
 ) {
     for frame in frames.read() {
-        let outcome = save_screenshot(&settings.folder, frame.image.clone(), frame.time);
+        let (folder, image, time) = (settings.folder.clone(), frame.image.clone(), frame.time);
+        saving.0.push(
+            IoTaskPool::get().spawn(async move { (time, save_screenshot(&folder, image, time)) }),
+        );
+        status.saving += 1;
+    }
+}
+
+/// Records the outcome of each screenshot saved since the last frame. Runs before
+/// [`save_captured_frames`], so a frame captured in this update is saved in a later one.
+pub(crate) fn record_saved_screenshots(
+    mut saving: ResMut<SavingScreenshots>,
+    mut status: ResMut<ScreenshotStatus>,
+) {
+    saving.0.retain_mut(|task| {
+        let Some((time, outcome)) = check_ready(task) else {
+            return true;
+        };
         match &outcome {
             Ok(path) => {
-                info!(
-                    "screenshot at t = {:.3} s saved to {}",
-                    frame.time,
-                    path.display()
-                );
+                info!("screenshot at t = {time:.3} s saved to {}", path.display());
                 status.saved += 1;
             }
             Err(e) => {
@@ -146,6 +169,8 @@ pub(crate) fn save_captured_frames(
                 status.failed += 1;
             }
         }
+        status.saving -= 1;
         status.last = Some(outcome);
-    }
+        false
+    });
 }

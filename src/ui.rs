@@ -181,6 +181,9 @@ fn panel(
                     actions.write(LabAction::Screenshot);
                 }
             });
+            if status.saving > 0 {
+                ui.weak("saving screenshot…");
+            }
             match &status.last {
                 Some(Ok(path)) => {
                     ui.colored_label(

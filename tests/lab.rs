@@ -301,6 +301,20 @@ fn keys_open_the_chooser_load_pause_step_and_request_screenshots() {
     assert_eq!(requests, vec![ScreenshotRequested { time: now }]);
 }
 
+/// Updates `app` until no screenshot is being saved (at least once, at most for ten seconds)
+/// and returns the status.
+fn wait_for_screenshots(app: &mut App) -> ScreenshotStatus {
+    for _ in 0..10_000 {
+        app.update();
+        let status = app.world().resource::<ScreenshotStatus>();
+        if status.saving == 0 {
+            return status.clone();
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    panic!("a screenshot still being saved after ten seconds");
+}
+
 #[test]
 fn a_screenshot_is_saved_with_the_time_written_on_it() {
     let dir = temp_dir("saved").join("created/if/missing");
@@ -317,8 +331,12 @@ fn a_screenshot_is_saved_with_the_time_written_on_it() {
         image,
         time: 12.3456,
     });
+    // The frame is handed to the I/O task pool: the update that takes it does not wait for
+    // the file.
     app.update();
     let status = app.world().resource::<ScreenshotStatus>().clone();
+    assert_eq!((status.saving, status.saved, status.last), (1, 0, None));
+    let status = wait_for_screenshots(&mut app);
     let path = status.last.unwrap().unwrap();
     assert_eq!(status.saved, 1);
     assert!(path.starts_with(&dir));
@@ -331,14 +349,9 @@ fn a_screenshot_is_saved_with_the_time_written_on_it() {
         image: image::RgbaImage::new(320, 200),
         time: 0.5,
     });
-    app.update();
-    let second = app
-        .world()
-        .resource::<ScreenshotStatus>()
-        .last
-        .clone()
-        .unwrap()
-        .unwrap();
+    let status = wait_for_screenshots(&mut app);
+    assert_eq!(status.saved, 2);
+    let second = status.last.unwrap().unwrap();
     assert_ne!(second, path);
     assert!(path.exists() && second.exists());
 }
@@ -361,8 +374,7 @@ fn a_screenshot_that_cannot_be_saved_is_reported_and_the_app_runs_on() {
         image: image::RgbaImage::new(64, 64),
         time: 1.0,
     });
-    app.update();
-    let status = app.world().resource::<ScreenshotStatus>().clone();
+    let status = wait_for_screenshots(&mut app);
     assert_eq!((status.saved, status.failed), (0, 1));
     let error = status.last.unwrap().unwrap_err();
     assert!(error.contains("shots"), "{error}");

@@ -161,6 +161,39 @@ fn steer(world: &mut sphere_physics::World, id: BodyId, item: &SphereQueryItem) 
         && (force == f || world.set_force(id, force).is_ok())
 }
 
+/// Whether `a` and `b` describe the same sphere, bit for bit, with NaN equal to NaN (a sphere
+/// rejected for a NaN is still the same sphere). Checked for every rejected sphere at every
+/// `Prepare`, so without allocating (comparing their `Debug` text took two strings each).
+fn same_desc(a: &SphereDesc, b: &SphereDesc) -> bool {
+    let same = |x: f64, y: f64| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan());
+    let same3 = |x: DVec3, y: DVec3| same(x.x, y.x) && same(x.y, y.y) && same(x.z, y.z);
+    // Every field named, so that a new one cannot be forgotten here.
+    let SphereDesc {
+        name,
+        position,
+        velocity,
+        radius,
+        density,
+        restitution,
+        force,
+        fixed,
+        tether,
+    } = a;
+    *name == b.name
+        && same3(*position, b.position)
+        && same3(*velocity, b.velocity)
+        && same(*radius, b.radius)
+        && same(*density, b.density)
+        && same(*restitution, b.restitution)
+        && same3(*force, b.force)
+        && *fixed == b.fixed
+        && match (tether, b.tether) {
+            (None, None) => true,
+            (Some(x), Some(y)) => same3(x.anchor, y.anchor) && same(x.length, y.length),
+            _ => false,
+        }
+}
+
 /// [`SpherePhysicsSystems::Prepare`](crate::SpherePhysicsSystems::Prepare): removes despawned
 /// spheres, adds new ones, applies changes made by game systems, and rejects invalid ones.
 #[allow(clippy::too_many_arguments)]
@@ -267,12 +300,8 @@ pub(crate) fn prepare(
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
         let desc = describe(&item, &options, None);
-        // Still the same invalid description (compared as text, so NaN equals NaN): already
-        // reported.
-        if item
-            .10
-            .is_some_and(|r| format!("{:?}", r.desc) == format!("{desc:?}"))
-        {
+        // Still the same invalid description: already reported.
+        if item.10.is_some_and(|r| same_desc(&r.desc, &desc)) {
             continue;
         }
         match physics.world.add_sphere(desc.clone()) {

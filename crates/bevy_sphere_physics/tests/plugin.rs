@@ -461,6 +461,41 @@ fn invalid_components_are_reported_and_left_out_until_fixed() {
     assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
 }
 
+/// A rejected sphere is reported again when its components change to another bad value, and
+/// not while they stay the same, NaN included (a NaN is the same value step after step), nor
+/// when a component is written with the very same value.
+#[test]
+fn a_rejected_sphere_is_reported_again_only_when_it_changes() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    collect_rejections(&mut app);
+    let ball = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SphereVelocity(DVec3::new(f64::NAN, 0.0, 0.0)),
+        ))
+        .id();
+    run_steps(&mut app, 3);
+    assert_eq!(app.world().resource::<Rejections>().0.len(), 1);
+    // Written again, the same NaN (change detection fires; the description is the same).
+    app.world_mut().get_mut::<SphereVelocity>(ball).unwrap().0 = DVec3::new(f64::NAN, 0.0, 0.0);
+    run_steps(&mut app, 3);
+    assert_eq!(app.world().resource::<Rejections>().0.len(), 1);
+    // Another bad value: reported again, once.
+    app.world_mut().get_mut::<SphereBody>(ball).unwrap().radius = -1.0;
+    run_steps(&mut app, 3);
+    let seen = &app.world().resource::<Rejections>().0;
+    assert_eq!(seen.len(), 2, "{seen:?}");
+    assert_eq!(seen[1].entity, ball);
+    // -0.5 and then 0.5 in the velocity's y with the radius still bad: each a new sphere
+    // description, each reported.
+    app.world_mut().get_mut::<SphereVelocity>(ball).unwrap().0 = DVec3::new(f64::NAN, -0.5, 0.0);
+    run_steps(&mut app, 2);
+    app.world_mut().get_mut::<SphereVelocity>(ball).unwrap().0 = DVec3::new(f64::NAN, 0.5, 0.0);
+    run_steps(&mut app, 2);
+    assert_eq!(app.world().resource::<Rejections>().0.len(), 4);
+}
+
 #[test]
 fn game_systems_change_velocity_radius_and_position() {
     let mut app = app(SpherePhysicsPlugin::default());

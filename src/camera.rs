@@ -9,7 +9,7 @@ use bevy_egui::EguiContexts;
 
 use crate::controls::LabUi;
 use crate::render::{SphereExtent, scene_bounds_of};
-use crate::scenes::{ActiveScene, LabPersistent};
+use crate::scenes::{ActiveScene, LabPersistent, LabScenes};
 
 /// Where the camera looks from: `distance` from `target`, turned `yaw` radians about the
 /// vertical and `pitch` radians above the horizontal.
@@ -66,9 +66,26 @@ fn spawn_camera(mut commands: Commands) {
     commands.spawn((LabPersistent, Camera3d::default(), orbit.transform(), orbit));
 }
 
-/// Frames the spheres (and anchors) of a scene just entered.
-fn frame_scene(spheres: Query<SphereExtent>, mut cameras: Query<(&mut OrbitCamera, &Projection)>) {
-    let Some((low, high)) = scene_bounds_of(&spheres) else {
+/// Frames the spheres (and anchors) of a scene just entered, and its `view` box if it has one.
+fn frame_scene(
+    spheres: Query<SphereExtent>,
+    state: Res<State<ActiveScene>>,
+    scenes: Res<LabScenes>,
+    mut cameras: Query<(&mut OrbitCamera, &Projection)>,
+) {
+    let view = state
+        .get()
+        .id()
+        .and_then(|id| scenes.get(id))
+        .and_then(|scene| scene.view)
+        .map(|(low, high)| (low.as_vec3(), high.as_vec3()));
+    let bounds = match (scene_bounds_of(&spheres), view) {
+        (Some((low, high)), Some((view_low, view_high))) => {
+            Some((low.min(view_low), high.max(view_high)))
+        }
+        (bounds, view) => bounds.or(view),
+    };
+    let Some((low, high)) = bounds else {
         // Nothing to frame: the default view, not the last scene's.
         for (mut orbit, _) in &mut cameras {
             *orbit = OrbitCamera::default();

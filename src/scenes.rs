@@ -56,6 +56,9 @@ pub struct LabScene {
     /// the lab runs is this rounded to a nanosecond (1/60 s runs as 0.016666667 s); the
     /// physics integrates over the step it runs.
     pub dt: f64,
+    /// A box the camera keeps in view with the spheres when the scene is entered, `(low
+    /// corner, high corner)` (a scene file's `view`; default none).
+    pub view: Option<(DVec3, DVec3)>,
 }
 
 impl LabScene {
@@ -72,6 +75,7 @@ impl LabScene {
             settings: Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)),
             restitution: 1.0,
             dt: 1.0 / 60.0,
+            view: None,
         }
     }
 
@@ -93,6 +97,12 @@ impl LabScene {
         self
     }
 
+    /// Framing this box too, from `low` to `high`, when the scene is entered.
+    pub fn view(mut self, low: DVec3, high: DVec3) -> Self {
+        self.view = Some((low, high));
+        self
+    }
+
     /// The entry for a scene file's contents, under `id`.
     pub fn from_desc(id: impl Into<String>, desc: &SceneDesc) -> Result<Self, SceneError> {
         let id = id.into();
@@ -107,6 +117,7 @@ impl LabScene {
             settings: desc.settings()?,
             restitution: desc.restitution,
             dt: desc.dt.unwrap_or(1.0 / 60.0),
+            view: desc.view()?,
         })
     }
 }
@@ -222,6 +233,13 @@ impl LabAppExt for App {
             Some(format!(
                 "restitution {} is outside [0, 1]",
                 scene.restitution
+            ))
+        } else if let Some((low, high)) = scene
+            .view
+            .filter(|(low, high)| !(low.is_finite() && high.is_finite() && low.cmple(*high).all()))
+        {
+            Some(format!(
+                "view from {low} to {high} is not a box with finite corners, low to high"
             ))
         } else {
             // Settings the core would refuse at every step (the scene would stand still).

@@ -633,7 +633,7 @@ fn everything_a_scene_spawns_is_gone_after_it_and_startup_entities_stay() {
 }
 
 #[test]
-fn a_scene_with_a_bad_step_or_restitution_is_listed_as_an_error_not_a_panic() {
+fn a_scene_with_a_bad_step_restitution_or_view_is_listed_as_an_error_not_a_panic() {
     let mut app = lab(LabPlugin {
         scene_folder: None,
         ..default()
@@ -643,13 +643,24 @@ fn a_scene_with_a_bad_step_or_restitution_is_listed_as_an_error_not_a_panic() {
         .add_lab_scene(
             LabScene::new("bouncy", "Bouncy", "e 2").restitution(2.0),
             || {},
+        )
+        .add_lab_scene(
+            LabScene::new("upside", "Upside", "view high to low").view(DVec3::Y, DVec3::ZERO),
+            || {},
+        )
+        .add_lab_scene(
+            LabScene::new("nowhere", "Nowhere", "view NaN")
+                .view(DVec3::ZERO, DVec3::new(1.0, f64::NAN, 1.0)),
+            || {},
         );
     app.update();
     let scenes = app.world().resource::<LabScenes>();
     assert!(scenes.is_empty());
-    assert_eq!(scenes.errors.len(), 3);
+    assert_eq!(scenes.errors.len(), 5);
     assert!(scenes.errors[0].contains("zero") && scenes.errors[0].contains("dt"));
     assert!(scenes.errors[2].contains("restitution"));
+    assert!(scenes.errors[3].contains("upside") && scenes.errors[3].contains("view"));
+    assert!(scenes.errors[4].contains("nowhere") && scenes.errors[4].contains("view"));
     app.world_mut()
         .write_message(LabAction::Load("zero".into()));
     app.update();
@@ -747,6 +758,39 @@ fn regression_a_scene_file_with_a_bad_sphere_or_setting_is_left_out_with_its_pat
         );
         assert_eq!(state(&app), ActiveScene::None);
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A scene file's `view` reaches the lab's scene (light_on_heavy frames its light ball's
+/// flight, 15 m up), and a file whose view is not a box is listed as left out, with its path.
+#[test]
+fn a_scene_files_view_is_kept_and_a_bad_one_listed() {
+    let dir = temp_dir("views");
+    std::fs::create_dir_all(&dir).unwrap();
+    let upside = dir.join("upside.ron");
+    std::fs::write(
+        &upside,
+        "(name: \"Upside\", spheres: [(position: (0.0, 0.0, 0.0), radius: 1.0)],
+          view: ((0.0, 5.0, 0.0), (1.0, 1.0, 1.0)))",
+    )
+    .unwrap();
+    let mut app = lab(LabPlugin {
+        scene_folder: Some(scene_folder()),
+        ..default()
+    });
+    app.add_lab_scene_file(&upside);
+    app.update();
+    let scenes = app.world().resource::<LabScenes>();
+    assert_eq!(
+        scenes.get("light_on_heavy").unwrap().view,
+        Some((DVec3::new(-1.0, 0.0, -1.0), DVec3::new(1.0, 15.0, 1.0)))
+    );
+    assert_eq!(scenes.get("newtons_cradle").unwrap().view, None);
+    let failure = scenes.failure("upside").expect("listed as left out");
+    assert!(
+        failure.contains(&upside.display().to_string()) && failure.contains("view"),
+        "{failure}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

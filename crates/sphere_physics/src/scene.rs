@@ -66,6 +66,11 @@ pub struct SceneDesc {
     /// Generators of many spheres, added after `spheres` in this order (default none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub generate: Vec<Generator>,
+    /// A box a viewer keeps in view besides the spheres, `(low corner, high corner)` (default
+    /// none): for motion that leaves where the spheres start, such as a ball thrown high. The
+    /// lab frames it with the spheres; runners ignore it. See [`SceneDesc::view`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub view: Option<[[f64; 3]; 2]>,
 }
 
 /// One sphere in a scene file.
@@ -232,6 +237,29 @@ impl SceneDesc {
         // The limits every world checks (substeps, bisection iterations), said at load time.
         settings.validate().map_err(SceneError::Settings)?;
         Ok(settings)
+    }
+
+    /// The box to keep in view (see the `view` field), checked: its corners finite and the
+    /// low one nowhere above the high one.
+    pub fn view(&self) -> Result<Option<(DVec3, DVec3)>, SceneError> {
+        let Some([low, high]) = self.view else {
+            return Ok(None);
+        };
+        if let Some(bad) = low.into_iter().chain(high).find(|x| !x.is_finite()) {
+            return Err(SceneError::Setting {
+                field: "view",
+                value: bad,
+                reason: "must be finite",
+            });
+        }
+        if let Some(axis) = (0..3).find(|&k| low[k] > high[k]) {
+            return Err(SceneError::Setting {
+                field: "view",
+                value: low[axis],
+                reason: "low corner must not exceed the high corner on any axis",
+            });
+        }
+        Ok(Some((DVec3::from(low), DVec3::from(high))))
     }
 
     /// Every sphere of the scene: the listed ones, then each generator's, in order. The

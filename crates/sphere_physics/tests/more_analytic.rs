@@ -187,3 +187,39 @@ fn scene_parse_errors_say_where() {
     let scene = SceneDesc::from_ron(&bad.to_ron()).unwrap();
     assert_eq!(scene, bad);
 }
+
+/// A scene's `view` box: read from the file, written back by `to_ron`, ignored by the world,
+/// and refused with the field named when a corner is not finite or the corners are swapped.
+#[test]
+fn a_scene_view_is_read_checked_and_kept() {
+    let text = "(name: \"thrown\", gravity: (0.0, -9.81, 0.0),
+        spheres: [(position: (0.0, 1.0, 0.0), velocity: (0.0, 10.0, 0.0), radius: 0.1)],
+        view: ((-1.0, 0.0, -1.0), (1.0, 6.0, 1.0)))";
+    let scene = SceneDesc::from_ron(text).unwrap();
+    assert_eq!(
+        scene.view().unwrap(),
+        Some((DVec3::new(-1.0, 0.0, -1.0), DVec3::new(1.0, 6.0, 1.0)))
+    );
+    assert_eq!(SceneDesc::from_ron(&scene.to_ron()).unwrap(), scene);
+    assert_eq!(scene.build().unwrap().len(), 1);
+    let none = SceneDesc::from_ron("(name: \"plain\")").unwrap();
+    assert_eq!(none.view().unwrap(), None);
+    assert!(!none.to_ron().contains("view"));
+    for (view, reason) in [
+        ("((-1.0, 0.0, -1.0), (1.0, inf, 1.0))", "finite"),
+        ("((-1.0, NaN, -1.0), (1.0, 6.0, 1.0))", "finite"),
+        ("((-1.0, 7.0, -1.0), (1.0, 6.0, 1.0))", "low corner"),
+    ] {
+        let scene = SceneDesc::from_ron(&format!("(name: \"bad\", view: {view})")).unwrap();
+        let error = scene.view().unwrap_err();
+        assert!(
+            matches!(error, SceneError::Setting { field: "view", .. }),
+            "{error}"
+        );
+        let message = error.to_string();
+        assert!(
+            message.contains("view") && message.contains(reason),
+            "{message}"
+        );
+    }
+}

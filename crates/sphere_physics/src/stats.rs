@@ -25,7 +25,8 @@ pub struct StepStats {
     /// Impacts found but not resolved because a body's share of the step's budget
     /// ([`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)) ran out,
     /// or the whole budget did with bodies on strings, or between bodies the fallback solve
-    /// left alone (an impact found again after one of its bodies changed counts again).
+    /// left alone, or pairs its rounds ran out before (an impact found again after one of its
+    /// bodies changed counts again).
     /// Non-zero means the step was cut short: bodies may be left overlapping until the next
     /// step.
     pub collisions_deferred: u32,

@@ -59,8 +59,10 @@ pub struct Settings {
     /// out (a crowd landing at once, each collision bringing on more: a thousand spheres
     /// dropped together into a box), the rest of the step is solved at once instead of one
     /// collision at a time: every pair that could meet is kept from closing past touching,
-    /// restitution 0, as the resting contacts are ([`StepStats::fell_back`]; with bodies on
-    /// strings the rest are deferred to the next step instead). No body takes more than 64 times
+    /// restitution 0, as the resting contacts are, in rounds until the pairs each round's
+    /// changes bring together are solved too (at most 32; any left after them are counted as
+    /// deferred) ([`StepStats::fell_back`]; with bodies on strings the rest are deferred to
+    /// the next step instead). No body takes more than 64 times
     /// this in one step (so that a sphere caught between fixed ones, which bounces between them
     /// without end, cannot spend the whole budget); its collisions beyond that are deferred to
     /// the next step and counted in [`StepStats::collisions_deferred`]. The shower and gas

@@ -437,6 +437,11 @@ const FALLBACK_ROUNDS: usize = 32;
 /// The most Gauss–Seidel sweeps over the resting contacts in one step.
 const RESTING_SWEEPS: u32 = 64;
 
+/// The most sweeps of each of [`Solver::fall_back`]'s rounds after the first, which start
+/// from the impulses the rounds before found (a landing pit of 10 000: 48 µs a sphere a step
+/// instead of 62 with 64 sweeps, the same deepest overlap, 0.76 mm).
+const FALLBACK_LATER_SWEEPS: u32 = 16;
+
 /// What the solver needs to know besides the bodies.
 pub(crate) struct StepContext<'a> {
     pub settings: &'a Settings,
@@ -1289,7 +1294,20 @@ impl Solver {
                 .extend(self.resting[known..].iter().map(|c| (c.a, c.b)));
             self.fallback_pairs.sort_unstable();
             self.order_resting(ctx);
-            self.sweep_resting(0.0);
+            // Converged as the step's resting solve is (see `solve_resting`), or as far as the
+            // round's sweeps go.
+            let threshold = 1e-9
+                * self
+                    .resting
+                    .iter()
+                    .map(|c| self.resting_scale * c.press)
+                    .fold(0.0, f64::max);
+            let sweeps = if round == 0 {
+                RESTING_SWEEPS
+            } else {
+                FALLBACK_LATER_SWEEPS
+            };
+            self.sweep_resting(threshold, sweeps);
             bodies.clear();
             self.clear_touched();
             for k in 0..self.resting.len() {
@@ -1368,14 +1386,14 @@ impl Solver {
     }
 
     /// Sweeps over the resting contacts (projected Gauss–Seidel, accelerated) until no
-    /// impulse changes a relative speed by more than `threshold`, or [`RESTING_SWEEPS`] times.
-    fn sweep_resting(&mut self, threshold: f64) {
+    /// impulse changes a relative speed by more than `threshold`, or `sweeps` times.
+    fn sweep_resting(&mut self, threshold: f64, sweeps: u32) {
         let count = self.resting.len();
         for c in &mut self.resting {
             c.before = c.impulse;
         }
         let mut last_change = 0.0f64;
-        for sweep in 0..RESTING_SWEEPS {
+        for sweep in 0..sweeps {
             let mut largest = 0.0f64;
             // How far the sweep moved the impulses (squared), for the acceleration below.
             let mut change = 0.0f64;
@@ -1450,7 +1468,7 @@ impl Solver {
                 }
             }
         }
-        self.sweep_resting(threshold);
+        self.sweep_resting(threshold, RESTING_SWEEPS);
         self.record_resting(0.0, ctx, stats);
         let resting = std::mem::take(&mut self.resting);
         self.next_warm.clear();

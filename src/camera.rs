@@ -80,7 +80,7 @@ fn frame_scene(
         .and_then(|scene| scene.view)
         .map(|(low, high)| (low.as_vec3(), high.as_vec3()))
         // A box beyond single precision (finite as checked, but past 3e38) is not framed.
-        .filter(|(low, high)| low.is_finite() && high.is_finite());
+        .filter(|(low, high)| (*high - *low).is_finite());
     let bounds = match (scene_bounds_of(&spheres), view) {
         (Some((low, high)), Some((view_low, view_high))) => {
             Some((low.min(view_low), high.max(view_high)))

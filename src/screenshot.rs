@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use bevy::prelude::*;
-use bevy::tasks::{IoTaskPool, Task, futures::check_ready};
+use bevy::tasks::{IoTaskPool, Task, TaskPool, futures::check_ready};
 use image::RgbaImage;
 
 use crate::stamp::stamp_time;
@@ -129,7 +129,9 @@ pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result
 
 /// Screenshots being saved on the I/O task pool: stamping a frame and encoding it as PNG
 /// take tens of milliseconds, which on the main thread would hold the window still for a
-/// frame or more.
+/// frame or more. (With the `render` feature Bevy's task pools have threads of their own;
+/// a headless build without Bevy's `multi_threaded` runs the save on the main thread, at
+/// the end of the frame.)
 #[derive(Resource, Default)]
 pub(crate) struct SavingScreenshots(Vec<Task<(f64, Result<PathBuf, String>)>>);
 
@@ -143,14 +145,17 @@ pub(crate) fn save_captured_frames(
     for frame in frames.read() {
         let (folder, image, time) = (settings.folder.clone(), frame.image.clone(), frame.time);
         saving.0.push(
-            IoTaskPool::get().spawn(async move { (time, save_screenshot(&folder, image, time)) }),
+            IoTaskPool::get_or_init(TaskPool::default)
+                .spawn(async move { (time, save_screenshot(&folder, image, time)) }),
         );
         status.saving += 1;
     }
 }
 
-/// Records the outcome of each screenshot saved since the last frame. Runs before
-/// [`save_captured_frames`], so a frame captured in this update is saved in a later one.
+/// Records the outcome of each screenshot saved since the last frame, in the order they
+/// finish (two in flight may finish out of order: [`ScreenshotStatus::last`] is the latest
+/// to finish). Runs before [`save_captured_frames`], so a frame captured in this update is
+/// recorded in a later one.
 pub(crate) fn record_saved_screenshots(
     mut saving: ResMut<SavingScreenshots>,
     mut status: ResMut<ScreenshotStatus>,

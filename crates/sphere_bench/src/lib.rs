@@ -188,9 +188,13 @@ pub fn measure_rapier(
     }
 }
 
-/// The largest overlap between two spheres of `scene` placed at `positions` (rapier's, after
-/// its run), at least one of them dynamic, found by our engine's broad phase; NaN if rapier
-/// left a sphere where ours would not take it (not finite).
+/// The largest overlap between two spheres of `scene`, the dynamic ones placed at
+/// `positions` (rapier's, after its run) and the fixed ones where the scene puts them, at least
+/// one of them dynamic, found by our engine's broad phase; NaN if rapier left a sphere where
+/// ours would not take it (not finite). The fixed ones keep the scene's places because rapier
+/// gives some of them back changed: a wall far from the origin rounded to single precision
+/// (about half a millimetre at 1e4 m), or a wall made a half-space placed at its tangent point
+/// (`--rapier-flat-walls`).
 #[cfg(feature = "rapier")]
 fn overlap_left(
     scene: &SceneDesc,
@@ -199,7 +203,9 @@ fn overlap_left(
 ) -> f64 {
     let mut world = World::new(scene.settings().expect("bench scenes are valid"));
     for (mut desc, &position) in descs.into_iter().zip(positions) {
-        desc.position = sphere_physics::glam::DVec3::from_array(position);
+        if !desc.fixed {
+            desc.position = sphere_physics::glam::DVec3::from_array(position);
+        }
         // Placed where rapier left it: an overlap is what this measures, not an error.
         if world.add_sphere(desc).is_err() {
             return f64::NAN;

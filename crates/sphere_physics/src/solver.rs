@@ -1205,9 +1205,14 @@ impl Solver {
     /// could meet in the rest of the step is solved at once, as resting contacts are, each
     /// allowed to close no further than half the contact band short of touching by the step's
     /// end (an overlapping one to part as a resting contact does): restitution 0, momentum
-    /// kept, no energy gained beyond the overlaps' undoing. The impacts left in the queue are
-    /// then stale, and the step drifts to its end. Bodies on strings are left to the budget's
-    /// deferral as before (the fallback is skipped when any body hangs on a string).
+    /// kept, no energy gained beyond the overlaps' undoing. The solve goes in rounds, each
+    /// adding the pairs the last one's changes bring together, until a round adds none; after
+    /// [`FALLBACK_ROUNDS`] the pairs still added are left unsolved and counted as deferred.
+    /// Each round sweeps until the impulses settle as the step's resting solve does (the first
+    /// at most [`RESTING_SWEEPS`] times, later ones [`FALLBACK_LATER_SWEEPS`]). The impacts
+    /// left in the queue are then stale, and the step drifts to its end. Bodies on strings are
+    /// left to the budget's deferral as before (the fallback is skipped when any body hangs on
+    /// a string).
     fn fall_back(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
         if self.strings || t >= ctx.dt {
             return;

@@ -1,0 +1,553 @@
+//! The resting contacts: which touching pairs rest and how hard they are pressed, the guards
+//! beside them, the solve that keeps them all from closing at the step's start (projected
+//! Gauss–Seidel, accelerated, warm-started), and the fallback solve for a step whose collision
+//! budget runs out. Part of [`Solver`]: these are its methods, kept apart from the event loop.
+
+use glam::DVec3;
+
+use super::*;
+
+impl Solver {
+    /// Whether [`Solver::resting_contact`] may act on `(i, j)`: resting contacts are sought,
+    /// and the pair touches (or both are fixed), or is near (see [`Solver::near`]) with a body
+    /// that rested in the last step. A glance, inlined into the first pass, which spares most
+    /// pairs the call.
+    #[inline(always)]
+    pub(super) fn may_rest(&self, i: usize, j: usize, ctx: &StepContext<'_>) -> bool {
+        let (si, sj) = (&self.segments[i], &self.segments[j]);
+        if si.is_fixed() && sj.is_fixed() {
+            return true;
+        }
+        if self.resting_scale == 0.0 {
+            return false;
+        }
+        let reach = si.radius() + sj.radius();
+        let band = contact_band(si, sj, ctx.settings);
+        let distance_squared = (sj.position - si.position).length_squared();
+        let near = reach + band + self.near_reach;
+        if distance_squared > near * near {
+            return false;
+        }
+        distance_squared <= (reach + band) * (reach + band)
+            || bit(&self.rested_here, i)
+            || bit(&self.rested_here, j)
+    }
+
+    /// If `(i, j)` touch (within [`contact_band`]) and approach no faster than the
+    /// resting speed, records them as a resting contact. A touching pair that is not one, or
+    /// a near one, is listed in [`Solver::near`] for [`Solver::add_guards`].
+    /// A pair overlapping deeper than half the creep distance also gets a separating speed
+    /// that undoes the excess over the step: the resting solve converges only so far, and
+    /// without it a leftover approach below the creep speed would sink a stack for ever.
+    pub(super) fn resting_contact(&mut self, i: usize, j: usize, ctx: &StepContext<'_>) -> bool {
+        let settings = ctx.settings;
+        let (si, sj) = (&self.segments[i], &self.segments[j]);
+        if si.is_fixed() && sj.is_fixed() {
+            return true;
+        }
+        if self.resting_scale == 0.0 {
+            return false;
+        }
+        let d = sj.position - si.position;
+        let reach = si.radius() + sj.radius();
+        let band = contact_band(si, sj, settings);
+        let distance_squared = d.length_squared();
+        let near = if bit(&self.rested_here, i) || bit(&self.rested_here, j) {
+            reach + band + self.near_reach
+        } else {
+            reach + band
+        };
+        if distance_squared > near * near || distance_squared == 0.0 {
+            return false;
+        }
+        let distance = distance_squared.sqrt();
+        let normal = d / distance;
+        if distance > reach + band {
+            self.near.push((i as u32, j as u32, normal, distance));
+            return false;
+        }
+        let approach = -(sj.velocity - si.velocity).dot(normal);
+        // Separating as slowly as a resting pair may approach counts too: in a stack all fall
+        // together at the start of the step, and only the solve shows which contacts hold.
+        let rests = |press: f64| {
+            let bias = self.correction(reach - distance, band, press, ctx);
+            let window = self.resting_scale * press;
+            let out = approach < -(window + bias) || approach > window;
+            (!(out || (window == 0.0 && bias == 0.0)), bias)
+        };
+        let mut press = pressing(self.extra(i), self.extra(j), normal);
+        let (mut resting, mut bias) = rests(press);
+        if !resting && self.sustained(i, j) {
+            // A contact that took a load in the last step is pressed by the weight whichever
+            // way it points: in a pile the weight pushes sideways too, through the neighbours.
+            press = self.start_press(i, j, normal);
+            (resting, bias) = rests(press);
+        }
+        if !resting {
+            // Not resting: if the solve would push it together, a guard (see `add_guards`).
+            self.near.push((i as u32, j as u32, normal, distance));
+            return false;
+        }
+        self.tested.push((i as u32, j as u32));
+        self.push_resting(i as u32, j as u32, normal, bias, press, false);
+        true
+    }
+
+    /// Adds pair `(a, b)` (solver indices, `a < b`) to the resting contacts, with no impulse
+    /// yet.
+    pub(super) fn push_resting(
+        &mut self,
+        a: u32,
+        b: u32,
+        normal: DVec3,
+        bias: f64,
+        press: f64,
+        speculative: bool,
+    ) {
+        self.resting.push(RestingContact {
+            a,
+            b,
+            normal,
+            impulse: 0.0,
+            inverse_mass_a: self.extra(a as usize).inverse_mass,
+            inverse_mass_b: self.extra(b as usize).inverse_mass,
+            bias,
+            press,
+            speculative,
+            before: 0.0,
+            direction: 0.0,
+            height: 0.0,
+        });
+    }
+
+    /// Whether touching pair `(i, j)` took an impulse in the last step's resting solve.
+    pub(super) fn sustained(&self, i: usize, j: usize) -> bool {
+        let rested = |k: usize| self.segments[k].is_fixed() || bit(&self.rested_here, k);
+        if self.warm.is_empty() || !(rested(i) && rested(j)) {
+            return false;
+        }
+        let (a, b) = (self.extra(i).id, self.extra(j).id);
+        self.warm
+            .binary_search_by_key(&(a.min(b), a.max(b)), |w| (w.0, w.1))
+            .is_ok()
+    }
+
+    /// Adds to the resting contacts, as guards, the pairs that are not resting contacts but
+    /// touch or nearly touch (see [`Solver::near`]) and have a body in a resting contact: each
+    /// may approach as fast as it does now, or as fast as ends the step half the contact band
+    /// apart, whichever is faster. A guard takes an impulse only if the solve itself pushes
+    /// its pair together (in a pile, a sphere pushed sideways by the spheres it rests on,
+    /// towards a wall a hair away), never against a pair meeting of its own accord (two balls
+    /// rolling into each other on a floor meet with their restitution).
+    pub(super) fn add_guards(&mut self, ctx: &StepContext<'_>) {
+        if self.near.is_empty() {
+            return;
+        }
+        self.clear_touched();
+        for k in 0..self.resting.len() {
+            let c = self.resting[k];
+            self.touch(c.a);
+            self.touch(c.b);
+        }
+        for n in 0..self.near.len() {
+            let (i, j, normal, distance) = self.near[n];
+            let (a, b) = (i as usize, j as usize);
+            if !(self.is_touched(a) || self.is_touched(b)) {
+                continue;
+            }
+            let (sa, sb) = (&self.segments[a], &self.segments[b]);
+            let reach = sa.radius() + sb.radius();
+            let band = contact_band(sa, sb, ctx.settings);
+            let approach = -(sb.velocity - sa.velocity).dot(normal);
+            let allowed = approach.max(((distance - reach - 0.5 * band) / ctx.dt).max(0.0));
+            let press = self.start_press(a, b, normal);
+            if allowed > self.resting_scale * press {
+                continue;
+            }
+            self.push_resting(i, j, normal, -allowed, press, distance > reach + band);
+        }
+        self.clear_touched();
+    }
+
+    /// The separating speed that undoes, over a step, the part of a resting pair's `overlap`
+    /// deeper than a quarter of the creep distance (plus the contact `band`).
+    pub(super) fn correction(
+        &self,
+        overlap: f64,
+        band: f64,
+        press: f64,
+        ctx: &StepContext<'_>,
+    ) -> f64 {
+        let slop = 0.25 * self.creep_scale * press * ctx.dt + band;
+        (overlap - slop).max(0.0) / ctx.dt
+    }
+
+    /// When the step's collision budget runs out at time `t` (a crowd landing at once, where
+    /// each collision brings on more): every dynamic body is moved to `t`, and every pair that
+    /// could meet in the rest of the step is solved at once, as resting contacts are, each
+    /// allowed to close no further than half the contact band short of touching by the step's
+    /// end (an overlapping one to part as a resting contact does): restitution 0, momentum
+    /// kept, no energy gained beyond the overlaps' undoing. The solve goes in rounds, each
+    /// adding the pairs the last one's changes bring together, until a round adds none; after
+    /// [`FALLBACK_ROUNDS`] the pairs still added are left unsolved and counted as deferred.
+    /// Each round sweeps until the impulses settle as the step's resting solve does (the first
+    /// at most [`RESTING_SWEEPS`] times, later ones [`FALLBACK_LATER_SWEEPS`]). The impacts
+    /// left in the queue are then stale, and the step drifts to its end. Bodies on strings are
+    /// left to the budget's deferral as before (the fallback is skipped when any body hangs on
+    /// a string).
+    pub(super) fn fall_back(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        if self.strings || t >= ctx.dt {
+            return;
+        }
+        let rest = ctx.dt - t;
+        for segment in &mut self.segments {
+            segment.advance_to(t);
+        }
+        self.resting.clear();
+        self.fallback_pairs.clear();
+        let mut bodies = std::mem::take(&mut self.local_bodies);
+        bodies.clear();
+        bodies.extend(
+            (0..self.segments.len() as u32).filter(|&k| !self.segments[k as usize].is_fixed()),
+        );
+        let mut candidates = std::mem::take(&mut self.candidates);
+        // The solve changes velocities, which may bring other pairs together: rounds, each
+        // adding the pairs the last one's changes could bring within the band, until none
+        // does.
+        for round in 0..=FALLBACK_ROUNDS {
+            let known = self.resting.len();
+            self.clear_touched();
+            for &k in &bodies {
+                self.touch(k);
+            }
+            for &k in &bodies {
+                let k = k as usize;
+                candidates.clear();
+                self.broad
+                    .collect_overlapping(k, &self.boxes, &mut candidates);
+                for &m in &candidates {
+                    let m = m as usize;
+                    // Each pair once: from its first body of this round's.
+                    if m == k || (m < k && self.is_touched(m)) {
+                        continue;
+                    }
+                    let (a, b) = (k.min(m), k.max(m));
+                    let key = (a as u32, b as u32);
+                    if self.fallback_pairs.binary_search(&key).is_ok() {
+                        continue;
+                    }
+                    let (sa, sb) = (&self.segments[a], &self.segments[b]);
+                    if sa.is_fixed() && sb.is_fixed() {
+                        continue;
+                    }
+                    let d = sb.position - sa.position;
+                    let distance = d.length();
+                    if distance == 0.0 {
+                        continue;
+                    }
+                    let normal = d / distance;
+                    let reach = sa.radius() + sb.radius();
+                    let band = contact_band(sa, sb, ctx.settings);
+                    let approach = -(sb.velocity - sa.velocity).dot(normal);
+                    let gap = distance - reach;
+                    // Pairs that cannot come within half the band by the step's end need
+                    // nothing (yet).
+                    if approach * rest < gap - 0.5 * band {
+                        continue;
+                    }
+                    let press = self.start_press(a, b, normal);
+                    let allowed = if gap > 0.0 {
+                        (gap - 0.5 * band).max(0.0) / rest
+                    } else {
+                        -self.correction(-gap, band, press, ctx)
+                    };
+                    self.tested.push(key);
+                    self.push_resting(key.0, key.1, normal, -allowed, press, gap > band);
+                }
+            }
+            if self.resting.len() == known {
+                break;
+            }
+            if round == FALLBACK_ROUNDS {
+                // Out of rounds: these pairs are left to meet unresolved, and said so.
+                let left = self.resting.len() - known;
+                stats.collisions_deferred = stats
+                    .collisions_deferred
+                    .saturating_add(u32::try_from(left).unwrap_or(u32::MAX));
+                self.resting.truncate(known);
+                break;
+            }
+            self.fallback_pairs
+                .extend(self.resting[known..].iter().map(|c| (c.a, c.b)));
+            self.fallback_pairs.sort_unstable();
+            self.order_resting(ctx);
+            // Converged as the step's resting solve is (see `solve_resting`), or as far as the
+            // round's sweeps go.
+            let threshold = 1e-9
+                * self
+                    .resting
+                    .iter()
+                    .map(|c| self.resting_scale * c.press)
+                    .fold(0.0, f64::max);
+            let sweeps = if round == 0 {
+                RESTING_SWEEPS
+            } else {
+                FALLBACK_LATER_SWEEPS
+            };
+            self.sweep_resting(threshold, sweeps);
+            bodies.clear();
+            self.clear_touched();
+            for k in 0..self.resting.len() {
+                let c = self.resting[k];
+                if c.impulse > 0.0 {
+                    self.touch(c.a);
+                    self.touch(c.b);
+                }
+            }
+            bodies.extend_from_slice(&self.touched);
+            // Their boxes from now on, for the next round's candidates.
+            for &k in &bodies {
+                let k = k as usize;
+                self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+                self.broad.update(k, &self.boxes[k]);
+            }
+        }
+        self.candidates = candidates;
+        self.local_bodies = bodies;
+        self.record_resting(t, ctx, stats);
+        self.resting.clear();
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            self.versions[k] += 1;
+            self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+            self.check_bounded(k);
+        }
+        self.clear_touched();
+        stats.fell_back = true;
+    }
+
+    /// Touches the bodies of every resting contact that took an impulse, and records those
+    /// that touch (not the guards still apart) as resting collisions at time `t` of the step.
+    pub(super) fn record_resting(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        self.clear_touched();
+        let resting = std::mem::take(&mut self.resting);
+        for c in resting.iter().filter(|c| c.impulse > 0.0) {
+            self.touch(c.a);
+            self.touch(c.b);
+            if c.speculative {
+                continue;
+            }
+            let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
+            stats.collisions = stats.collisions.saturating_add(1);
+            stats.resting_contacts = stats.resting_contacts.saturating_add(1);
+            self.collisions.push(collision(
+                self.extra(a).id,
+                self.extra(b).id,
+                ctx.start_time + t,
+                c.normal,
+                sa.position + c.normal * sa.radius(),
+                c.impulse,
+                true,
+            ));
+        }
+        self.resting = resting;
+    }
+
+    /// Orders the resting contacts lowest first along gravity: a forward sweep carries a bed's
+    /// weight down to its floor, the backward one after it carries the floor's push back up.
+    pub(super) fn order_resting(&mut self, ctx: &StepContext<'_>) {
+        if ctx.settings.gravity != DVec3::ZERO {
+            let up = -ctx.settings.gravity;
+            // Each contact's height worked out once, not at each of the sort's comparisons
+            // (two segments read for each).
+            for c in &mut self.resting {
+                let a = &self.segments[c.a as usize];
+                c.height = (a.position + c.normal * a.radius()).dot(up);
+            }
+            self.resting.sort_unstable_by(|x, y| {
+                x.height
+                    .total_cmp(&y.height)
+                    .then((x.a, x.b).cmp(&(y.a, y.b)))
+            });
+        }
+    }
+
+    /// Sweeps over the resting contacts (projected Gauss–Seidel, accelerated) until no
+    /// impulse changes a relative speed by more than `threshold`, or `sweeps` times.
+    pub(super) fn sweep_resting(&mut self, threshold: f64, sweeps: u32) {
+        let count = self.resting.len();
+        for c in &mut self.resting {
+            c.before = c.impulse;
+        }
+        let mut last_change = 0.0f64;
+        for sweep in 0..sweeps {
+            let mut largest = 0.0f64;
+            // How far the sweep moved the impulses (squared), for the acceleration below.
+            let mut change = 0.0f64;
+            // Forward and backward in turn (symmetric Gauss–Seidel): a load carried down a
+            // stack reaches its base in one pair of sweeps whichever way the stack is listed.
+            for k in 0..count {
+                let k = if sweep % 2 == 0 { k } else { count - 1 - k };
+                let c = &mut self.resting[k];
+                let (a, b) = (c.a as usize, c.b as usize);
+                let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
+                let speed =
+                    (self.segments[b].velocity - self.segments[a].velocity).dot(c.normal) - c.bias;
+                let next = (c.impulse - speed / (ima + imb)).max(0.0);
+                let step = next - c.impulse;
+                if step != 0.0 {
+                    c.impulse = next;
+                    self.segments[a].velocity -= c.normal * (step * ima);
+                    self.segments[b].velocity += c.normal * (step * imb);
+                    largest = largest.max((step * (ima + imb)).abs());
+                }
+                let moved = c.impulse - c.before;
+                change += moved * moved;
+            }
+            if largest <= threshold {
+                break;
+            }
+            // Accelerated (nonsmooth nonlinear conjugate gradients, see `conjugate_factor`):
+            // Gauss–Seidel alone crawls on a wedged bed (a pit of 1000 spheres still moved by
+            // 1e-3 m/s a sweep after 4096 sweeps).
+            let beta = conjugate_factor(change, last_change);
+            last_change = change;
+            for c in &mut self.resting {
+                let next = conjugate_step(c.impulse, c.impulse - c.before, &mut c.direction, beta);
+                if next != c.impulse {
+                    let extra = next - c.impulse;
+                    c.impulse = next;
+                    let (a, b) = (c.a as usize, c.b as usize);
+                    self.segments[a].velocity -= c.normal * (extra * c.inverse_mass_a);
+                    self.segments[b].velocity += c.normal * (extra * c.inverse_mass_b);
+                }
+                c.before = c.impulse;
+            }
+        }
+    }
+
+    /// Solves all resting contacts at once (projected Gauss–Seidel, restitution 0), then marks
+    /// the bodies it changed as touched.
+    pub(super) fn solve_resting(&mut self, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        let threshold = 1e-9
+            * self
+                .resting
+                .iter()
+                .map(|c| self.resting_scale * c.press)
+                .fold(0.0, f64::max);
+        let count = self.resting.len();
+        self.order_resting(ctx);
+        // Start from the last solve's impulses: a bed at rest needs the same ones step after
+        // step, and a wedged bed's load takes Gauss–Seidel far more sweeps to find than one.
+        if !self.warm.is_empty() {
+            for k in 0..count {
+                let c = &self.resting[k];
+                let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
+                let key = (a.min(b), a.max(b));
+                if let Ok(w) = self.warm.binary_search_by_key(&key, |w| (w.0, w.1)) {
+                    let impulse = self.warm[w].2 * ctx.dt;
+                    let c = &mut self.resting[k];
+                    c.impulse = impulse;
+                    let (a, b, normal) = (c.a as usize, c.b as usize, c.normal);
+                    let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
+                    self.segments[a].velocity -= normal * (impulse * ima);
+                    self.segments[b].velocity += normal * (impulse * imb);
+                }
+            }
+        }
+        self.sweep_resting(threshold, RESTING_SWEEPS);
+        self.record_resting(0.0, ctx, stats);
+        let resting = std::mem::take(&mut self.resting);
+        self.next_warm.clear();
+        self.loads.clear();
+        for c in resting.iter().filter(|c| c.impulse > 0.0) {
+            let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
+            self.next_warm
+                .push((a.min(b), a.max(b), c.impulse / ctx.dt));
+            let load = c.impulse * (c.inverse_mass_a + c.inverse_mass_b) / ctx.dt;
+            self.loads.push((c.a, c.b, load));
+            for k in [c.a as usize, c.b as usize] {
+                self.loaded[k / 64] |= 1 << (k % 64);
+            }
+        }
+        self.next_warm.sort_unstable_by_key(|w| (w.0, w.1));
+        self.rested.clear();
+        self.rested.resize(self.order.len().div_ceil(64), 0);
+        for c in resting.iter().filter(|c| c.impulse > 0.0) {
+            for k in [c.a, c.b] {
+                if !self.segments[k as usize].is_fixed() {
+                    let i = self.order[k as usize] as usize;
+                    self.rested[i / 64] |= 1 << (i % 64);
+                }
+            }
+        }
+        std::mem::swap(&mut self.warm, &mut self.next_warm);
+        self.loads.sort_unstable_by_key(|l| (l.0, l.1));
+        self.resting = resting;
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            let string = self.string_of(k);
+            let segment = &mut self.segments[k];
+            if let Some(s) = string {
+                let strung = &mut self.strung[s];
+                strung.free_velocity = segment.velocity;
+                (segment.velocity, strung.taut, strung.sag) =
+                    chord(segment.position, segment.velocity, strung.tether, ctx.dt);
+            }
+            self.versions[k] += 1;
+            self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
+            self.check_bounded(k);
+        }
+    }
+
+    /// A contact's restitution, and whether it is a resting contact (approaching no faster
+    /// than the resting speed: restitution 0).
+    pub(super) fn restitution(
+        &self,
+        a: usize,
+        b: usize,
+        normal: DVec3,
+        settings: &Settings,
+    ) -> (f64, bool) {
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let (ea, eb) = (self.extra(a), self.extra(b));
+        let approach_speed = -(sb.velocity - sa.velocity).dot(normal);
+        if approach_speed <= self.resting_scale * self.press(a, b, normal) {
+            (0.0, true)
+        } else {
+            let combined = settings
+                .restitution_combine
+                .combine(ea.restitution, eb.restitution);
+            (combined, false)
+        }
+    }
+
+    /// The acceleration pressing touching pair `(i, j)` together along `normal` at the start
+    /// of the step, when the resting solve picks its contacts: the larger of the two bodies'
+    /// whole accelerations, unless one hangs on a string (then only along the normal, see
+    /// [`pressing`]). In a pile the weight pushes sideways too, through the neighbours; a
+    /// contact that touched before the step began is a loaded one, not a first meeting.
+    pub(super) fn start_press(&self, i: usize, j: usize, normal: DVec3) -> f64 {
+        let (a, b) = (self.extra(i), self.extra(j));
+        let own = pressing(a, b, normal);
+        if self.strings && (self.string_of(i).is_some() || self.string_of(j).is_some()) {
+            return own;
+        }
+        own.max(a.acceleration.length().max(b.acceleration.length()))
+    }
+
+    /// The acceleration pressing pair `(a, b)` together along `normal` within the step: the
+    /// bodies' own (see [`pressing`]), or the load this step's resting solve put on their
+    /// contact, whichever is larger.
+    pub(super) fn press(&self, a: usize, b: usize, normal: DVec3) -> f64 {
+        let own = pressing(self.extra(a), self.extra(b), normal);
+        if !(bit(&self.loaded, a) && bit(&self.loaded, b)) {
+            return own;
+        }
+        let key = (a.min(b) as u32, a.max(b) as u32);
+        match self.loads.binary_search_by_key(&key, |l| (l.0, l.1)) {
+            Ok(k) => own.max(self.loads[k].2),
+            Err(_) => own,
+        }
+    }
+}

@@ -198,7 +198,7 @@ pub(crate) struct Solver {
     /// The largest component of any kick after the drift: when it is below half the largest
     /// f64, a velocity below that half cannot overflow when its kick is added.
     largest_kick_after: f64,
-    /// The string states that [`Extra::string`] points to.
+    /// The string states of the bodies on strings (see [`Solver::string_of`]).
     strung: Vec<Strung>,
     /// Whether any body hangs on a string this step.
     strings: bool,

@@ -504,7 +504,7 @@ impl Hierarchy {
     }
 
     /// Calls `f(i, j)` with `i < j` for every pair of overlapping boxes, each pair once.
-    /// Call right after [`BroadPhase::rebuild`] with the same boxes.
+    /// Call right after [`Hierarchy::rebuild`] with the same boxes.
     pub fn pairs(&self, boxes: &[Aabb], mut f: impl FnMut(usize, usize)) {
         // In sorted order, so memory is read nearly in order. A pair on one level is reported
         // from the forward side of its pair of cells (in one cell: from the earlier entry); a

@@ -13,7 +13,9 @@
 //! the solve counts as its press for the rest of the step; and the solve is warm-started,
 //! swept lowest first and accelerated (nonsmooth nonlinear conjugate gradients).
 
-use sphere_physics::{SceneDesc, World};
+mod common;
+
+use sphere_physics::World;
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -21,27 +23,7 @@ const DT: f64 = 1.0 / 60.0;
 /// high, one cell in two filled, into an open box: a floor and four walls, fixed spheres of
 /// radius 1e4 (`sphere_bench`'s `pile` scene).
 fn pit(count: u32) -> World {
-    let cells = (2.0 * f64::from(count) / 16.0).sqrt().ceil();
-    let wall = 1.0e4;
-    let cell = 2.0 * 0.05 * 1.1;
-    let (half, height) = (0.5 * cell * cells, 16.0 * cell);
-    let scene = SceneDesc::from_ron(&format!(
-        "(name: \"pit\", gravity: (0.0, -9.81, 0.0), restitution: 0.5,
-          spheres: [
-            (name: \"floor\", position: (0.0, {f:?}, 0.0), radius: {wall:?}, fixed: true),
-            (name: \"wall x-\", position: ({n:?}, 0.0, 0.0), radius: {wall:?}, fixed: true),
-            (name: \"wall x+\", position: ({p:?}, 0.0, 0.0), radius: {wall:?}, fixed: true),
-            (name: \"wall z-\", position: (0.0, 0.0, {n:?}), radius: {wall:?}, fixed: true),
-            (name: \"wall z+\", position: (0.0, 0.0, {p:?}), radius: {wall:?}, fixed: true)],
-          generate: [Shower(count: {count}, seed: 1, min: ({lo:?}, 0.0, {lo:?}),
-                            max: ({half:?}, {height:?}, {half:?}), radius: 0.05)])",
-        f = -wall,
-        n = -half - wall,
-        p = half + wall,
-        lo = -half,
-    ))
-    .unwrap();
-    scene.build().unwrap()
+    common::pit(count, 1, 0.5, 0.05, 0.0)
 }
 
 /// Steps `world` for `steps` steps after `settle` steps, and returns the largest collision

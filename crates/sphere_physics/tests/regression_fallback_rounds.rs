@@ -7,37 +7,17 @@
 //! into each other, no collision deferred. Fixed by going on until a round adds no pair (at
 //! most 32 rounds; pairs still left after them are counted as deferred).
 
+mod common;
+
 use proptest::prelude::*;
-use sphere_physics::{SceneDesc, World};
+use sphere_physics::World;
 
 const DT: f64 = 1.0 / 60.0;
 
-/// `count` spheres of radius `radius` and restitution `restitution` dropped from a lattice 16
-/// cells high, one cell in two filled, into an open box: a floor and four walls, fixed spheres
-/// of radius 1e4 (as `regression_ball_pit.rs`, with a column of cells to spare).
+/// `count` spheres of radius `radius` and restitution `restitution` dropped into an open box,
+/// as in `regression_ball_pit.rs` but with a column of cells to spare.
 fn pit(count: u32, seed: u64, restitution: f64, radius: f64) -> World {
-    let cells = (2.0 * f64::from(count) / 16.0).sqrt().ceil() + 1.0;
-    let wall = 1.0e4;
-    let cell = 2.0 * radius * 1.1;
-    let (half, height) = (0.5 * cell * cells, 16.0 * cell);
-    SceneDesc::from_ron(&format!(
-        "(name: \"pit\", gravity: (0.0, -9.81, 0.0), restitution: {restitution:?},
-          spheres: [
-            (name: \"floor\", position: (0.0, {f:?}, 0.0), radius: {wall:?}, fixed: true),
-            (name: \"wall x-\", position: ({n:?}, 0.0, 0.0), radius: {wall:?}, fixed: true),
-            (name: \"wall x+\", position: ({p:?}, 0.0, 0.0), radius: {wall:?}, fixed: true),
-            (name: \"wall z-\", position: (0.0, 0.0, {n:?}), radius: {wall:?}, fixed: true),
-            (name: \"wall z+\", position: (0.0, 0.0, {p:?}), radius: {wall:?}, fixed: true)],
-          generate: [Shower(count: {count}, seed: {seed}, min: ({lo:?}, 0.0, {lo:?}),
-                            max: ({half:?}, {height:?}, {half:?}), radius: {radius:?})])",
-        f = -wall,
-        n = -half - wall,
-        p = half + wall,
-        lo = -half,
-    ))
-    .unwrap()
-    .build()
-    .unwrap()
+    common::pit(count, seed, restitution, radius, 1.0)
 }
 
 /// Steps `world` `steps` times and returns the deepest overlap at a step's end, the steps

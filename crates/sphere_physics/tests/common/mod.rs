@@ -1,10 +1,10 @@
 //! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
-//! cases it found, the creep allowance, a sheet of spheres over fixed ones, and head-on pairs
-//! that must each collide within one step.
+//! cases it found, the creep allowance, a sheet of spheres over fixed ones, head-on pairs
+//! that must each collide within one step, and a pit of spheres dropped into an open box.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
-use sphere_physics::{BodyId, Settings, SphereDesc, StepStats, World, glam::DVec3};
+use sphere_physics::{BodyId, SceneDesc, Settings, SphereDesc, StepStats, World, glam::DVec3};
 
 /// One sphere as the property draws it: velocity (x, y, z), radius, density, restitution, and
 /// a jitter along (1, 1, 1).
@@ -145,4 +145,33 @@ pub fn step_head_on_pairs(pairs: &[[SphereDesc; 2]], dt: f64, label: &str) -> St
         );
     }
     stats
+}
+
+/// `count` spheres of radius `radius` and restitution `restitution` dropped from a lattice 16
+/// cells (`2.2 radius`) high, one cell in two filled (from `seed`), into an open box with
+/// `spare` columns of cells to spare across: a floor and four walls, fixed spheres of radius
+/// 1e4 (`sphere_bench`'s `pile` scene has `spare` 0).
+pub fn pit(count: u32, seed: u64, restitution: f64, radius: f64, spare: f64) -> World {
+    let cells = (2.0 * f64::from(count) / 16.0).sqrt().ceil() + spare;
+    let wall = 1.0e4;
+    let cell = 2.0 * radius * 1.1;
+    let (half, height) = (0.5 * cell * cells, 16.0 * cell);
+    SceneDesc::from_ron(&format!(
+        "(name: \"pit\", gravity: (0.0, -9.81, 0.0), restitution: {restitution:?},
+          spheres: [
+            (name: \"floor\", position: (0.0, {f:?}, 0.0), radius: {wall:?}, fixed: true),
+            (name: \"wall x-\", position: ({n:?}, 0.0, 0.0), radius: {wall:?}, fixed: true),
+            (name: \"wall x+\", position: ({p:?}, 0.0, 0.0), radius: {wall:?}, fixed: true),
+            (name: \"wall z-\", position: (0.0, 0.0, {n:?}), radius: {wall:?}, fixed: true),
+            (name: \"wall z+\", position: (0.0, 0.0, {p:?}), radius: {wall:?}, fixed: true)],
+          generate: [Shower(count: {count}, seed: {seed}, min: ({lo:?}, 0.0, {lo:?}),
+                            max: ({half:?}, {height:?}, {half:?}), radius: {radius:?})])",
+        f = -wall,
+        n = -half - wall,
+        p = half + wall,
+        lo = -half,
+    ))
+    .unwrap()
+    .build()
+    .unwrap()
 }

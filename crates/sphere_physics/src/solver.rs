@@ -40,7 +40,9 @@ use crate::{Body, Collision, Integrator, Settings, StepProfile, StepStats, Tethe
 mod glance;
 mod resting;
 
-use glance::{Apart, Glance, Relative, Side, cannot_touch_by, kept_by_glances};
+use glance::{
+    Apart, FirstPass, Glance, Relative, Side, cannot_touch_by, first_pass_kept, kept_by_glances,
+};
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
 /// Only what pair tests read, in one cache line, so the event loop's random reads stay small;
@@ -637,18 +639,56 @@ impl Solver {
         self.loads.clear();
         // Pairs are tested in batches: a batch's second bodies' segments are asked for when it
         // comes, and read when the next has come (rows of cells lie far apart in memory).
+        // A pair the first pass keeps: a resting contact, or its time of impact.
+        let mut first_pass_pair = |solver: &mut Self, i: usize, j: usize| {
+            let rests = if solver.may_rest(i, j, ctx) {
+                solver.resting_contact(i, j, ctx)
+            } else {
+                // The glance must not miss a resting pair (checked in debug builds).
+                debug_assert!(!solver.resting_contact(i, j, ctx), "resting pair missed");
+                false
+            };
+            if !rests {
+                solver.test_pair(i, j, 0.0, ctx, stats);
+            }
+        };
+        // Most pairs need nothing: apart, not near enough to rest, and dismissed at a glance.
+        // A filter finds those first, four at a time and without a branch on any (see
+        // `first_pass_kept`); the rest are kept, one by one.
+        let pass = FirstPass {
+            dt,
+            near_reach: (self.resting_scale != 0.0).then_some(self.near_reach),
+            epsilon: settings.tolerance.epsilon(),
+            apart: self.apart,
+        };
         let mut test_batch = |solver: &mut Self, batch: &[(u32, u32)]| {
-            for &(i, j) in batch {
-                let (i, j) = (i as usize, j as usize);
-                let rests = if solver.may_rest(i, j, ctx) {
-                    solver.resting_contact(i, j, ctx)
-                } else {
-                    // The glance must not miss a resting pair (checked in debug builds).
-                    debug_assert!(!solver.resting_contact(i, j, ctx), "resting pair missed");
-                    false
-                };
-                if !rests {
-                    solver.test_pair(i, j, 0.0, ctx, stats);
+            for batch in batch.chunks(64) {
+                let mut kept = first_pass_kept(&solver.segments, batch, &pass);
+                // Debug builds check each outcome against the filter one pair at a time, and
+                // each pair skipped against what the first pass would have made of it.
+                #[cfg(debug_assertions)]
+                for (at, &(i, j)) in batch.iter().enumerate() {
+                    let (i, j) = (i as usize, j as usize);
+                    let (si, sj) = (&solver.segments[i], &solver.segments[j]);
+                    let skips = pass.skips(si, sj);
+                    assert_eq!(
+                        kept >> at & 1 == 0,
+                        skips,
+                        "the first pass's filter, ({i}, {j})"
+                    );
+                    if skips {
+                        let dismissed = Glance::of(si, sj, 0.0, dt).dismisses(solver.apart);
+                        assert!(
+                            !solver.may_rest(i, j, ctx) && dismissed,
+                            "pair ({i}, {j}) skipped, but it may rest or is not dismissed"
+                        );
+                    }
+                }
+                while kept != 0 {
+                    let at = kept.trailing_zeros() as usize;
+                    kept &= kept - 1;
+                    let (i, j) = batch[at];
+                    first_pass_pair(solver, i as usize, j as usize);
                 }
             }
         };

@@ -329,6 +329,235 @@ unsafe fn kept_by_four(side: &Side, segments: &[Segment], candidates: &[u32], ap
     kept
 }
 
+/// What the first pass's filter needs besides the drifts (see [`first_pass_kept`]).
+#[derive(Clone, Copy)]
+pub(super) struct FirstPass {
+    /// The step's length.
+    pub(super) dt: f64,
+    /// How near a pair must be to be looked at as a resting contact, beyond the reach and the
+    /// contact band (`Solver::near_reach`); `None` when nothing rests this step.
+    pub(super) near_reach: Option<f64>,
+    /// The tolerance's epsilon (the contact band's part, see `contact_band`).
+    pub(super) epsilon: f64,
+    pub(super) apart: Apart,
+}
+
+impl FirstPass {
+    /// Whether the first pass may skip pair `(si, sj)` (`si` first), one pair at a time: not
+    /// both fixed, not near enough to rest (`Solver::may_rest` says no at once), and dismissed
+    /// at a glance from the step's start. Such a pair needs nothing: the first pass would
+    /// find it no resting contact and its full test would return at the glance.
+    #[inline(always)]
+    pub(super) fn skips(&self, si: &Segment, sj: &Segment) -> bool {
+        if si.is_fixed() && sj.is_fixed() {
+            return false;
+        }
+        if let Some(near_reach) = self.near_reach {
+            let reach = si.radius() + sj.radius();
+            let band = 2e-6 * si.radius().min(sj.radius()) + self.epsilon * (1.0 + reach);
+            let near = reach + band + near_reach;
+            // `!(a > b)`, as `Solver::may_rest` asks it (a NaN is near).
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
+            if !((sj.position - si.position).length_squared() > near * near) {
+                return false;
+            }
+        }
+        Glance::of(si, sj, 0.0, self.dt).dismisses(self.apart)
+    }
+}
+
+/// The first pass's filter over `pairs` (at most 64, `(i, j)` with `i < j`, indices into
+/// `segments`): bit `k` set for each pair [`FirstPass::skips`] does not skip, the same bits
+/// either way. Without a branch on any outcome: four pairs side by side where the processor
+/// has AVX, otherwise one after the other.
+#[inline(always)]
+pub(super) fn first_pass_kept(segments: &[Segment], pairs: &[(u32, u32)], pass: &FirstPass) -> u64 {
+    debug_assert!(pairs.len() <= 64);
+    #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
+    if std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: the processor has AVX (just checked).
+        return unsafe { first_pass_kept_by_four(segments, pairs, pass) };
+    }
+    let mut kept = 0u64;
+    for (at, &(i, j)) in pairs.iter().enumerate() {
+        let skips = pass.skips(&segments[i as usize], &segments[j as usize]);
+        kept |= u64::from(!skips) << at;
+    }
+    kept
+}
+
+/// [`first_pass_kept`] four pairs at a time, in AVX's lanes: each pair's two drifts read and
+/// transposed as [`kept_by_four`] reads one, then [`FirstPass::skips`]'s operations on the
+/// same numbers in the same order (so the same outcomes, bit for bit). An odd last few pairs
+/// are worked out again as the last pair, and their bits dropped.
+#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
+#[target_feature(enable = "avx")]
+unsafe fn first_pass_kept_by_four(
+    segments: &[Segment],
+    pairs: &[(u32, u32)],
+    pass: &FirstPass,
+) -> u64 {
+    use std::arch::x86_64::{
+        __m256d, _CMP_GE_OQ, _CMP_GT_OQ, _CMP_NGE_UQ, _CMP_NGT_UQ, _mm256_add_pd, _mm256_and_pd,
+        _mm256_andnot_pd, _mm256_castsi256_pd, _mm256_cmp_pd, _mm256_loadu_pd, _mm256_max_pd,
+        _mm256_min_pd, _mm256_movemask_pd, _mm256_mul_pd, _mm256_or_pd, _mm256_permute2f128_pd,
+        _mm256_set1_epi64x, _mm256_set1_pd, _mm256_setzero_pd, _mm256_sub_pd, _mm256_unpackhi_pd,
+        _mm256_unpacklo_pd,
+    };
+    macro_rules! add {
+        ($x:expr, $y:expr) => {
+            _mm256_add_pd($x, $y)
+        };
+    }
+    macro_rules! sub {
+        ($x:expr, $y:expr) => {
+            _mm256_sub_pd($x, $y)
+        };
+    }
+    macro_rules! mul {
+        ($x:expr, $y:expr) => {
+            _mm256_mul_pd($x, $y)
+        };
+    }
+    macro_rules! one {
+        ($x:expr) => {
+            _mm256_set1_pd($x)
+        };
+    }
+    macro_rules! max_element {
+        ($x:expr, $y:expr, $z:expr) => {
+            _mm256_max_pd($x, _mm256_max_pd($y, $z))
+        };
+    }
+    macro_rules! dot {
+        ($a:expr, $b:expr) => {
+            add!(add!(mul!($a.0, $b.0), mul!($a.1, $b.1)), mul!($a.2, $b.2))
+        };
+    }
+    let magnitude_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX));
+    let abs = |x: __m256d| _mm256_and_pd(x, magnitude_mask);
+    // The drifts of four bodies, one per lane: position, velocity, start, signed radius.
+    let lanes = |first: [usize; 4]| {
+        let rows = |lane: usize| {
+            let segment = &segments[first[lane]];
+            let start = std::ptr::from_ref(segment).cast::<f64>();
+            // SAFETY: a `Segment` is eight `f64`s in a row (`repr(C)`: a position and a
+            // velocity of three each, `t0`, `signed_radius`): both loads lie within it.
+            unsafe { (_mm256_loadu_pd(start), _mm256_loadu_pd(start.add(4))) }
+        };
+        let ((a0, a1), (b0, b1), (c0, c1), (d0, d1)) = (rows(0), rows(1), rows(2), rows(3));
+        let (lo_ab, hi_ab) = (_mm256_unpacklo_pd(a0, b0), _mm256_unpackhi_pd(a0, b0));
+        let (lo_cd, hi_cd) = (_mm256_unpacklo_pd(c0, d0), _mm256_unpackhi_pd(c0, d0));
+        let p = (
+            _mm256_permute2f128_pd::<0x20>(lo_ab, lo_cd),
+            _mm256_permute2f128_pd::<0x20>(hi_ab, hi_cd),
+            _mm256_permute2f128_pd::<0x31>(lo_ab, lo_cd),
+        );
+        let vx = _mm256_permute2f128_pd::<0x31>(hi_ab, hi_cd);
+        let (lo_ab, hi_ab) = (_mm256_unpacklo_pd(a1, b1), _mm256_unpackhi_pd(a1, b1));
+        let (lo_cd, hi_cd) = (_mm256_unpacklo_pd(c1, d1), _mm256_unpackhi_pd(c1, d1));
+        let v = (
+            vx,
+            _mm256_permute2f128_pd::<0x20>(lo_ab, lo_cd),
+            _mm256_permute2f128_pd::<0x20>(hi_ab, hi_cd),
+        );
+        let t0 = _mm256_permute2f128_pd::<0x31>(lo_ab, lo_cd);
+        let signed_radius = _mm256_permute2f128_pd::<0x31>(hi_ab, hi_cd);
+        (p, v, t0, signed_radius)
+    };
+    let (zero, rest) = (_mm256_setzero_pd(), one!(pass.dt));
+    let apart = pass.apart;
+    let n = pairs.len();
+    let mut kept = 0u64;
+    let mut at = 0;
+    while at < n {
+        let pair = |lane: usize| pairs[(at + lane).min(n - 1)];
+        let (i, j) = (
+            [0, 1, 2, 3].map(|l| pair(l).0 as usize),
+            [0, 1, 2, 3].map(|l| pair(l).1 as usize),
+        );
+        let (pi, vi, ti, si) = lanes(i);
+        let (pj, vj, tj, sj) = lanes(j);
+        let (ri, rj) = (abs(si), abs(sj));
+        let reach = add!(ri, rj);
+        // Both fixed (both radii negative): never skipped.
+        let both_fixed = _mm256_and_pd(
+            _mm256_cmp_pd::<_CMP_GT_OQ>(zero, si),
+            _mm256_cmp_pd::<_CMP_GT_OQ>(zero, sj),
+        );
+        // Near enough to rest (`Solver::may_rest`), from the positions as they stand.
+        let near = match pass.near_reach {
+            Some(near_reach) => {
+                let band = add!(
+                    mul!(one!(2e-6), _mm256_min_pd(ri, rj)),
+                    mul!(one!(pass.epsilon), add!(one!(1.0), reach))
+                );
+                let near = add!(add!(reach, band), one!(near_reach));
+                let gap = (sub!(pj.0, pi.0), sub!(pj.1, pi.1), sub!(pj.2, pi.2));
+                // `!(a > b)`, as `Solver::may_rest` asks it (a NaN is near).
+                _mm256_cmp_pd::<_CMP_NGT_UQ>(dot!(gap, gap), mul!(near, near))
+            }
+            None => zero,
+        };
+        // The glance from the step's start (`Glance::of(si, sj, 0, dt)`).
+        let at_start = |p: (__m256d, __m256d, __m256d), v: (__m256d, __m256d, __m256d), t0| {
+            let since = sub!(zero, t0);
+            (
+                add!(p.0, mul!(v.0, since)),
+                add!(p.1, mul!(v.1, since)),
+                add!(p.2, mul!(v.2, since)),
+            )
+        };
+        let (qi, qj) = (at_start(pi, vi, ti), at_start(pj, vj, tj));
+        let d = (sub!(qj.0, qi.0), sub!(qj.1, qi.1), sub!(qj.2, qi.2));
+        let w = (sub!(vj.0, vi.0), sub!(vj.1, vi.1), sub!(vj.2, vi.2));
+        let magnitudes = add!(
+            max_element!(abs(pi.0), abs(pi.1), abs(pi.2)),
+            max_element!(abs(pj.0), abs(pj.1), abs(pj.2))
+        );
+        let end = (
+            add!(d.0, mul!(w.0, rest)),
+            add!(d.1, mul!(w.1, rest)),
+            add!(d.2, mul!(w.2, rest)),
+        );
+        let end_squared = dot!(end, end);
+        let allowance = add!(
+            mul!(reach, one!(1.0 + 1e-9)),
+            mul!(
+                one!(1e-12),
+                add!(
+                    magnitudes,
+                    mul!(max_element!(abs(w.0), abs(w.1), abs(w.2)), rest)
+                )
+            )
+        );
+        let (dw, ww) = (dot!(d, w), dot!(w, w));
+        let far = mul!(add!(reach, one!(apart.epsilon)), one!(apart.scale));
+        let cannot_touch = _mm256_and_pd(
+            _mm256_and_pd(
+                _mm256_cmp_pd::<_CMP_NGE_UQ>(add!(dw, mul!(ww, rest)), zero),
+                _mm256_cmp_pd::<_CMP_NGT_UQ>(
+                    mul!(mul!(ww, rest), rest),
+                    mul!(mul!(one!(1e12), reach), reach),
+                ),
+            ),
+            _mm256_cmp_pd::<_CMP_GT_OQ>(end_squared, mul!(far, far)),
+        );
+        let passed = _mm256_or_pd(_mm256_cmp_pd::<_CMP_GE_OQ>(dw, zero), cannot_touch);
+        let dismissed = _mm256_and_pd(
+            passed,
+            _mm256_cmp_pd::<_CMP_GE_OQ>(end_squared, mul!(allowance, allowance)),
+        );
+        let skips = _mm256_andnot_pd(_mm256_or_pd(both_fixed, near), dismissed);
+        kept |= u64::from(!_mm256_movemask_pd(skips) as u32 & 0b1111) << at;
+        at += 4;
+    }
+    if n < 64 {
+        kept &= (1 << n) - 1;
+    }
+    kept
+}
+
 /// A pair of drifts seen from the first, from time `t` to the step's end.
 #[derive(Clone, Copy)]
 pub(super) struct Relative {

@@ -188,7 +188,8 @@ impl Solver {
     /// allowed to close no further than half the contact band short of touching by the step's
     /// end (an overlapping one to part as a resting contact does): restitution 0, momentum
     /// kept, no energy gained beyond the overlaps' undoing. The solve goes in rounds, each
-    /// adding the pairs the last one's changes bring together, until a round adds none; after
+    /// adding the pairs the last one's changes bring together (the first also those within
+    /// [`FALLBACK_MARGIN`] of that, which spares most later rounds), until a round adds none; after
     /// [`FALLBACK_ROUNDS`] the pairs still added are left unsolved and counted as deferred.
     /// Each round sweeps until the impulses settle as the step's resting solve does (the first
     /// at most [`RESTING_SWEEPS`] times, later ones [`FALLBACK_LATER_SWEEPS`]). The impacts
@@ -220,11 +221,21 @@ impl Solver {
             for &k in &bodies {
                 self.touch(k);
             }
+            // The first round also takes pairs a little farther apart (see
+            // `FALLBACK_MARGIN`), found with boxes grown by as much.
+            let margin = if round == 0 { FALLBACK_MARGIN } else { 0.0 };
             for &k in &bodies {
                 let k = k as usize;
                 candidates.clear();
+                let swept = self.boxes[k];
+                if margin > 0.0 {
+                    let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
+                    self.boxes[k].lo -= grow;
+                    self.boxes[k].hi += grow;
+                }
                 self.broad
                     .collect_overlapping(k, &self.boxes, &mut candidates);
+                self.boxes[k] = swept;
                 for &m in &candidates {
                     let m = m as usize;
                     // Each pair once: from its first body of this round's.
@@ -252,7 +263,7 @@ impl Solver {
                     let gap = distance - reach;
                     // Pairs that cannot come within half the band by the step's end need
                     // nothing (yet).
-                    if approach * rest < gap - 0.5 * band {
+                    if approach * rest + margin * reach < gap - 0.5 * band {
                         continue;
                     }
                     let press = self.start_press(a, b, normal);

@@ -647,8 +647,6 @@ impl Solver {
         self.resting.clear();
         self.near.clear();
         self.loads.clear();
-        // Pairs are tested in batches: a batch's second bodies' segments are asked for when it
-        // comes, and read when the next has come (rows of cells lie far apart in memory).
         // A pair the first pass keeps: a resting contact, or its time of impact.
         let mut first_pass_pair = |solver: &mut Self, i: usize, j: usize| {
             let rests = if solver.may_rest(i, j, ctx) {
@@ -664,7 +662,11 @@ impl Solver {
         };
         // Most pairs need nothing: apart, not near enough to rest, and dismissed at a glance.
         // A filter finds those first, four at a time and without a branch on any (see
-        // `first_pass_kept`); the rest are kept, one by one.
+        // `first_pass_kept`); the rest are kept, one by one. Not with strings or a custom
+        // time-of-impact method: then every pair goes to the full test, as `test_pair` says
+        // (a string bends drifts the glance knows nothing of; a custom method is asked about
+        // every pair that closes).
+        let filter = !self.strings && ctx.toi.is_none();
         let pass = FirstPass {
             dt,
             near_reach: (self.resting_scale != 0.0).then_some(self.near_reach),
@@ -673,11 +675,15 @@ impl Solver {
         };
         let mut test_batch = |solver: &mut Self, batch: &[(u32, u32)]| {
             for batch in batch.chunks(64) {
-                let mut kept = first_pass_kept(&solver.segments, batch, &pass);
+                let mut kept = if filter {
+                    first_pass_kept(&solver.segments, batch, &pass)
+                } else {
+                    u64::MAX >> (64 - batch.len())
+                };
                 // Debug builds check each outcome against the filter one pair at a time, and
                 // each pair skipped against what the first pass would have made of it.
                 #[cfg(debug_assertions)]
-                for (at, &(i, j)) in batch.iter().enumerate() {
+                for (at, &(i, j)) in batch.iter().enumerate().filter(|_| filter) {
                     let (i, j) = (i as usize, j as usize);
                     let (si, sj) = (&solver.segments[i], &solver.segments[j]);
                     let skips = pass.skips(si, sj);
@@ -702,6 +708,8 @@ impl Solver {
                 }
             }
         };
+        // Pairs are tested in batches: a batch's second bodies' segments are asked for when it
+        // comes, and read when the next has come (rows of cells lie far apart in memory).
         let (mut pairs, mut asked) = (
             std::mem::take(&mut self.pairs),
             std::mem::take(&mut self.asked_pairs),

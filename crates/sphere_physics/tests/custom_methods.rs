@@ -132,3 +132,29 @@ fn regression_a_custom_answer_outside_the_step_is_no_impact() {
         assert!(world.bodies().iter().all(|b| b.position().is_finite()));
     }
 }
+
+/// Regression (review of the first pass's filter, 2026-12-02, before it landed): the filter
+/// that skips pairs dismissed at a glance skipped them with a custom method too, which is to
+/// be asked about every closing pair whose boxes meet (the glance knows only the built-in
+/// methods' answers). Two spheres 1.3 cm apart, one drifting towards the other too slowly to
+/// touch within the step: the custom method is asked about them in the first step.
+#[test]
+fn a_custom_method_is_asked_about_a_closing_pair_the_glance_would_dismiss() {
+    let mut world = SceneDesc::from_ron(
+        "(name: \"pair\", gravity: (0.0, 0.0, 0.0),
+          spheres: [
+            (position: (0.0, 0.0, 0.0), velocity: (0.06, 0.06, 0.0), radius: 0.05),
+            (position: (0.08, 0.08, 0.0), radius: 0.05)])",
+    )
+    .unwrap()
+    .build()
+    .unwrap();
+    let asked = Arc::new(AtomicU64::new(0));
+    world.set_time_of_impact(Box::new(CountedExact(asked.clone())));
+    let stats = *world.step(1.0 / 60.0).unwrap();
+    assert_eq!(stats.collisions, 0);
+    assert!(
+        asked.load(Ordering::Relaxed) >= 1,
+        "the custom method was not asked"
+    );
+}

@@ -514,7 +514,8 @@ mod avx {
             let second = load(segments, [0, 1, 2, 3].map(|lane| pair(lane).1 as usize));
             let (ri, rj) = (abs(first.signed_radius), abs(second.signed_radius));
             let reach = add!(ri, rj);
-            // Both fixed (both radii negative): never skipped.
+            // Both fixed (both radii negative): never skipped. (Radii are finite and positive,
+            // checked when bodies are made, so `0 > signed radius` is `is_sign_negative`.)
             let both_fixed = _mm256_and_pd(
                 _mm256_cmp_pd::<_CMP_GT_OQ>(zero, first.signed_radius),
                 _mm256_cmp_pd::<_CMP_GT_OQ>(zero, second.signed_radius),

@@ -1369,12 +1369,13 @@ impl Solver {
         for &k in &self.local_bodies {
             self.local_index[k as usize] = NOT_LOCAL;
         }
-        for ((c, &impulse), &resting) in self
-            .local_contacts
-            .iter()
-            .zip(&self.local_impulses)
-            .zip(&self.local_resting)
-        {
+        // The contacts of the events (a taut string's, after them, has no `local_resting`).
+        for k in 0..self.local_resting.len() {
+            let (c, impulse, resting) = (
+                self.local_contacts[k],
+                self.local_impulses[k],
+                self.local_resting[k],
+            );
             let (a, b) = (
                 self.local_bodies[c.a] as usize,
                 self.local_bodies[c.b] as usize,
@@ -1387,16 +1388,7 @@ impl Solver {
                 self.instant
                     .record(a as u32, b as u32, moving(&self.segments));
             }
-            let sa = &self.segments[a];
-            self.collisions.push(collision(
-                self.extra(a).id,
-                self.extra(b).id,
-                ctx.start_time + t,
-                c.normal,
-                sa.position + c.normal * sa.radius(),
-                impulse,
-                resting,
-            ));
+            self.record_collision((a, b), t, c.normal, impulse, resting, ctx);
         }
     }
 
@@ -1593,15 +1585,38 @@ impl Solver {
         }
         stats.collisions = stats.collisions.saturating_add(1);
         stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
-        self.collisions.push(collision(
-            self.extra(a).id,
-            self.extra(b).id,
-            ctx.start_time + t,
+        self.record_collision((a, b), t, normal, r.impulse, resting, ctx);
+    }
+
+    /// Records the collision of bodies `a` and `b` at time `t` of the step, along `normal`
+    /// (from `a` to `b`), at `a`'s surface, with the lower id first (the normal turned if
+    /// that is `b`).
+    fn record_collision(
+        &mut self,
+        (a, b): (usize, usize),
+        t: f64,
+        normal: DVec3,
+        impulse: f64,
+        resting: bool,
+        ctx: &StepContext<'_>,
+    ) {
+        let sa = &self.segments[a];
+        let point = sa.position + normal * sa.radius();
+        let (id_a, id_b) = (self.extra(a).id, self.extra(b).id);
+        let (a, b, normal) = if id_a <= id_b {
+            (id_a, id_b, normal)
+        } else {
+            (id_b, id_a, -normal)
+        };
+        self.collisions.push(Collision {
+            a,
+            b,
+            time: ctx.start_time + t,
             normal,
-            sa.position + normal * sa.radius(),
-            r.impulse,
+            point,
+            impulse,
             resting,
-        ));
+        });
     }
 }
 
@@ -1744,31 +1759,6 @@ fn taut(position: DVec3, velocity: DVec3, tether: Tether) -> (DVec3, DVec3) {
 /// A collision record with `a` the body of the smaller id: swapping the pair turns the normal
 /// round, and the contact point is the same point.
 #[allow(clippy::too_many_arguments)]
-fn collision(
-    a: crate::BodyId,
-    b: crate::BodyId,
-    time: f64,
-    normal: DVec3,
-    point: DVec3,
-    impulse: f64,
-    resting: bool,
-) -> Collision {
-    let (a, b, normal) = if a <= b {
-        (a, b, normal)
-    } else {
-        (b, a, -normal)
-    };
-    Collision {
-        a,
-        b,
-        time,
-        normal,
-        point,
-        impulse,
-        resting,
-    }
-}
-
 /// How far two bodies overlap (negative when apart).
 fn overlap(a: &Body, b: &Body) -> f64 {
     a.radius() + b.radius() - (b.position() - a.position()).length()

@@ -348,18 +348,10 @@ impl Solver {
             if c.speculative {
                 continue;
             }
-            let (sa, a, b) = (&self.segments[c.a as usize], c.a as usize, c.b as usize);
             stats.collisions = stats.collisions.saturating_add(1);
             stats.resting_contacts = stats.resting_contacts.saturating_add(1);
-            self.collisions.push(collision(
-                self.extra(a).id,
-                self.extra(b).id,
-                ctx.start_time + t,
-                c.normal,
-                sa.position + c.normal * sa.radius(),
-                c.impulse,
-                true,
-            ));
+            let ends = (c.a as usize, c.b as usize);
+            self.record_collision(ends, t, c.normal, c.impulse, true, ctx);
         }
         self.resting = resting;
     }

@@ -222,7 +222,10 @@ impl Solver {
                 self.touch(k);
             }
             // The first round also takes pairs a little farther apart (see
-            // `FALLBACK_MARGIN`), found with boxes grown by as much.
+            // `FALLBACK_MARGIN`), found with each body's box grown by that fraction of its
+            // diameter: as much for spheres of one size; a pair of unequal ones, which may
+            // fall short of the margin from the smaller's side, is taken by a later round if
+            // it closes.
             let margin = if round == 0 { FALLBACK_MARGIN } else { 0.0 };
             for &k in &bodies {
                 let k = k as usize;

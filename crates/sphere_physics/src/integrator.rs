@@ -5,6 +5,13 @@
 //! the whole step, then receives a second velocity change (`after`). Collision detection only ever
 //! sees the drift, a straight line, so the exact time-of-impact test is a closed-form quadratic
 //! whatever integrator is chosen, and collision code never depends on integration.
+//!
+//! The drift's velocity is taken as the body's velocity at the middle of the step (so it is for
+//! both integrators here: leapfrog's exactly, semi-implicit Euler's as its staggered velocity).
+//! An impact at time `t` of the step between bodies under different accelerations (a ball
+//! striking a fixed floor under gravity) answers their speed at that instant: the drifts'
+//! relative speed plus their relative acceleration times `t − dt/2`. So an elastic ball
+//! bounces back to the height it fell from, whenever in the step it strikes.
 
 use std::fmt::Debug;
 

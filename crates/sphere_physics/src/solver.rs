@@ -306,6 +306,10 @@ pub(crate) struct Solver {
     local_velocities: Vec<DVec3>,
     local_contacts: Vec<GroupContact>,
     local_impulses: Vec<f64>,
+    /// Each local body's velocity at the instant of a group's impacts less its drift's (see
+    /// `resolve_group`), and the impulses of the group's first solve when a second is needed.
+    local_shifts: Vec<DVec3>,
+    local_first_impulses: Vec<f64>,
 }
 
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
@@ -1356,12 +1360,66 @@ impl Solver {
                 }
             }
         }
+        // As for a single impact (see `resolve_event`): the impacts answer the speeds at their
+        // instant, which differ from the drifts' where the bodies' accelerations differ (a ball
+        // landing on two fixed spheres at once). Not with a taut string or a resting contact
+        // in the group, whose solves hold the drifts themselves.
+        let lag_time = t - 0.5 * ctx.dt;
+        let shifted = !self.local_taut.contains(&true)
+            && !self.local_resting.contains(&true)
+            && self.local_contacts.iter().any(|c| {
+                let acceleration = |i: usize| {
+                    self.extras[self.order[self.local_bodies[i] as usize] as usize].acceleration
+                };
+                (acceleration(c.b) - acceleration(c.a)).dot(c.normal) * lag_time != 0.0
+            });
+        if shifted {
+            self.local_shifts.clear();
+            for (&k, velocity) in self.local_bodies.iter().zip(&mut self.local_velocities) {
+                let shift = self.extras[self.order[k as usize] as usize].acceleration * lag_time;
+                *velocity += shift;
+                self.local_shifts.push(shift);
+            }
+        }
         resolve_simultaneous(
             &self.local_inverse_masses,
             &mut self.local_velocities,
             &self.local_contacts,
             &mut self.local_impulses,
         );
+        if shifted {
+            for (velocity, shift) in self.local_velocities.iter_mut().zip(&self.local_shifts) {
+                *velocity -= *shift;
+            }
+            // The drifts must not close: a pair the instant's speeds left parting slower than
+            // its lag (or closing) is stopped, restitution 0, on top.
+            let velocities = &self.local_velocities;
+            if self
+                .local_contacts
+                .iter()
+                .any(|c| (velocities[c.b] - velocities[c.a]).dot(c.normal) < 0.0)
+            {
+                self.local_first_impulses.clear();
+                self.local_first_impulses
+                    .extend_from_slice(&self.local_impulses);
+                for c in &mut self.local_contacts {
+                    c.restitution = 0.0;
+                }
+                resolve_simultaneous(
+                    &self.local_inverse_masses,
+                    &mut self.local_velocities,
+                    &self.local_contacts,
+                    &mut self.local_impulses,
+                );
+                for (impulse, first) in self
+                    .local_impulses
+                    .iter_mut()
+                    .zip(&self.local_first_impulses)
+                {
+                    *impulse += first;
+                }
+            }
+        }
         for i in 0..self.local_bodies.len() {
             let (k, velocity) = (self.local_bodies[i] as usize, self.local_velocities[i]);
             self.set_velocity(k, velocity, t, ctx);

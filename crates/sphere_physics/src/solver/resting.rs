@@ -335,7 +335,6 @@ impl Solver {
             self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS);
             finishing += FALLBACK_LATER_SWEEPS;
         }
-        self.candidates = candidates;
         self.local_bodies = bodies;
         self.record_resting(t, ctx, stats);
         self.resting.clear();
@@ -343,8 +342,29 @@ impl Solver {
             let k = self.touched[ti] as usize;
             self.versions[k] += 1;
             self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+            self.broad.update(k, &self.boxes[k]);
             self.check_bounded(k);
         }
+        // The drifts are final now (the step's later impacts are deferred), and the pairs the
+        // last changes bring together were tested nowhere: those that end the step overlapping
+        // are kept for its deepest overlap (a sphere driven through a line of them when the
+        // rounds ran out went unreported).
+        for ti in 0..self.touched.len() {
+            let k = self.touched[ti] as usize;
+            candidates.clear();
+            self.broad
+                .collect_overlapping(k, &self.boxes, &mut candidates);
+            for &m in &candidates {
+                let m = m as usize;
+                let reach = self.segments[k].radius() + self.segments[m].radius();
+                let apart = (self.final_position(m, ctx.dt) - self.final_position(k, ctx.dt))
+                    .length_squared();
+                if m != k && apart < reach * reach {
+                    self.tested.push((k.min(m) as u32, k.max(m) as u32));
+                }
+            }
+        }
+        self.candidates = candidates;
         self.clear_touched();
         stats.fell_back = true;
     }

@@ -61,9 +61,11 @@ pub struct Settings {
     /// collision at a time: every pair that could meet is kept from closing past touching,
     /// restitution 0, as the resting contacts are, in rounds until the pairs each round's
     /// changes bring together are solved too (at most 32; any left after them are counted as
-    /// deferred) ([`StepStats::fell_back`]; with bodies on strings the rest are deferred to
-    /// the next step instead). No body takes more than 64 times
-    /// this in one step (so that a sphere caught between fixed ones, which bounces between them
+    /// deferred), sweeping on while a pair would still end the step more than a hundredth of
+    /// the smaller radius past touching (up to 1024 more sweeps: a long line of spheres struck
+    /// hard passes its impulses on one contact a sweep) ([`StepStats::fell_back`]; with bodies
+    /// on strings the rest are deferred to the next step instead). No body takes more than 64
+    /// times this in one step (so that a sphere caught between fixed ones, which bounces between them
     /// without end, cannot spend the whole budget); its collisions beyond that are deferred to
     /// the next step and counted in [`StepStats::collisions_deferred`]. The shower and gas
     /// benchmarks take under 0.3 collisions per sphere per step, and a sphere at the bottom of

@@ -30,6 +30,12 @@ pub struct Kicks {
 /// A time integrator for bodies under constant acceleration within a step.
 pub trait Integrator: Debug + Send + Sync {
     /// The kicks for a body with `velocity` under `acceleration` over a step of `dt`.
+    ///
+    /// The solver takes the drift's velocity (`velocity + before`) as the body's velocity at
+    /// the middle of the step, as both built-in integrators' is, when it answers an impact
+    /// between bodies under different accelerations (see the module docs): an integrator whose
+    /// drift stands for another instant gets bounces off a fixed floor wrong by up to
+    /// `acceleration · dt / 2`.
     fn kicks(&self, velocity: DVec3, acceleration: DVec3, dt: f64) -> Kicks;
 }
 

@@ -1370,6 +1370,8 @@ impl Solver {
         // landing on two fixed spheres at once). Not with a taut string or a resting contact
         // in the group, whose solves hold the drifts themselves.
         let lag_time = t - 0.5 * ctx.dt;
+        // (Without a taut string every contact is between bodies: the string's anchors, past
+        // `local_bodies`, are not asked about.)
         let shifted = !self.local_taut.contains(&true)
             && !self.local_resting.contains(&true)
             && self.local_contacts.iter().any(|c| {
@@ -1398,12 +1400,12 @@ impl Solver {
             }
             // The drifts must not close: a pair the instant's speeds left parting slower than
             // its lag (or closing) is stopped, restitution 0, on top.
+            // (Beyond rounding: the shift there and back moves a velocity by an ulp or so.)
             let velocities = &self.local_velocities;
-            if self
-                .local_contacts
-                .iter()
-                .any(|c| (velocities[c.b] - velocities[c.a]).dot(c.normal) < 0.0)
-            {
+            if self.local_contacts.iter().any(|c| {
+                let (va, vb) = (velocities[c.a], velocities[c.b]);
+                (vb - va).dot(c.normal) < -1e-12 * (va.length() + vb.length())
+            }) {
                 self.local_first_impulses.clear();
                 self.local_first_impulses
                     .extend_from_slice(&self.local_impulses);

@@ -65,7 +65,8 @@ pub struct Settings {
     /// the smaller radius past touching (up to 1024 more sweeps: a long line of spheres struck
     /// hard passes its impulses on one contact a sweep) ([`StepStats::fell_back`]; with bodies
     /// on strings the rest are deferred to the next step instead). No body takes more than 64
-    /// times this in one step (so that a sphere caught between fixed ones, which bounces between them
+    /// times this in one step (so that a sphere caught between fixed ones, which bounces
+    /// between them
     /// without end, cannot spend the whole budget); its collisions beyond that are deferred to
     /// the next step and counted in [`StepStats::collisions_deferred`]. The shower and gas
     /// benchmarks take under 0.3 collisions per sphere per step, and a sphere at the bottom of

@@ -51,7 +51,7 @@ fn the_readme_scene_example_builds_with_no_sphere_inside_another() {
     // times the creep distance of its own weight in this pile, 2.1 before loads counted; 3.8
     // since bounces answer the speed at their instant (2026-12-02: the floor's bounces differ
     // by up to g·dt/2, and the pile, chaotic, lands otherwise; 4.3 with single impacts alone
-    // changed. Not deeper in general: 40 pits of 200 landing sank 7% less on average); 5
+    // changed. Not deeper in general: 40 pits of 200 landing sank 7% less on average); 4.5
     // allowed, as the pile's worst step moves with any change to its bounces).
     let settings = world_settings(&scene);
     let creep = settings.creep_fraction * settings.resting_factor * 9.81 * dt * dt;
@@ -62,8 +62,8 @@ fn the_readme_scene_example_builds_with_no_sphere_inside_another() {
     };
     let (worst, _) = run(exact.build().unwrap());
     assert!(
-        worst <= 5.0 * creep + band,
-        "{worst:e} > 5 · {creep:e} + {band:e}"
+        worst <= 4.5 * creep + band,
+        "{worst:e} > 4.5 · {creep:e} + {band:e}"
     );
 }
 

@@ -194,7 +194,7 @@ impl Solver {
     /// Each round sweeps until the impulses settle as the step's resting solve does (the first
     /// at most [`RESTING_SWEEPS`] times, later ones [`FALLBACK_LATER_SWEEPS`]), and after the
     /// last round up to [`FALLBACK_FINISH_SWEEPS`] more while a pair still closes well past its
-    /// allowance (a long chain, see `fallback_closing`). The impacts
+    /// allowance (a long chain, see `fallback_excess`). The impacts
     /// left in the queue are then stale, and the step drifts to its end. Bodies on strings are
     /// left to the budget's deferral as before (the fallback is skipped when any body hangs on
     /// a string).
@@ -329,11 +329,20 @@ impl Solver {
         // it is allowed by more than a hundredth of the smaller radius (a line of 100 spheres
         // struck at 1 km/s ended 2 cm into itself), up to `FALLBACK_FINISH_SWEEPS` more. A
         // landing pit seldom leaves a pair that deep (its 10 000 never; the 1000 now and then).
+        // Stopped, too, when four batches of sweeps in a row each leave the excess (summed over
+        // the contacts) no smaller than the batch before (a long chain's rises at first, then
+        // falls batch after batch): a set of contacts no velocities satisfy (a sphere pressed
+        // between fixed ones) would otherwise take every sweep, its impulses growing all the
+        // while.
         let threshold = self.sweep_threshold();
-        let mut finishing = 0;
-        while finishing < FALLBACK_FINISH_SWEEPS && self.fallback_closing(rest, ctx) {
+        let (mut finishing, mut stalled) = (0, 0);
+        let mut excess = self.fallback_excess(rest, ctx);
+        while finishing < FALLBACK_FINISH_SWEEPS && excess > 0.0 && stalled < 4 {
             self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS);
             finishing += FALLBACK_LATER_SWEEPS;
+            let left = self.fallback_excess(rest, ctx);
+            stalled = if left < excess { 0 } else { stalled + 1 };
+            excess = left;
         }
         self.local_bodies = bodies;
         self.record_resting(t, ctx, stats);
@@ -379,17 +388,21 @@ impl Solver {
             .fold(0.0, f64::max)
     }
 
-    /// Whether a contact of the fallback solve closes faster than it is allowed to by enough to
-    /// end the `rest` of the step deeper than allowed by more than half its band and a
-    /// hundredth of the smaller radius.
-    fn fallback_closing(&self, rest: f64, ctx: &StepContext<'_>) -> bool {
+    /// How much deeper than allowed the fallback's contacts would end the `rest` of the step,
+    /// beyond half their band and a hundredth of the smaller radius: the sum over those that
+    /// would (0 when none does).
+    fn fallback_excess(&self, rest: f64, ctx: &StepContext<'_>) -> f64 {
         const DEEP: f64 = 0.01;
-        self.resting.iter().any(|c| {
-            let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
-            let speed = (sb.velocity - sa.velocity).dot(c.normal) - c.bias;
-            speed * rest
-                < -0.5 * contact_band(sa, sb, ctx.settings) - DEEP * sa.radius().min(sb.radius())
-        })
+        self.resting
+            .iter()
+            .map(|c| {
+                let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
+                let speed = (sb.velocity - sa.velocity).dot(c.normal) - c.bias;
+                let tolerated =
+                    0.5 * contact_band(sa, sb, ctx.settings) + DEEP * sa.radius().min(sb.radius());
+                (-speed * rest - tolerated).max(0.0)
+            })
+            .sum()
     }
 
     /// Touches the bodies of every resting contact that took an impulse, and records those

@@ -33,7 +33,7 @@ use crate::broad_phase::{Aabb, BroadPhase};
 use crate::instant::InstantContacts;
 use crate::queue::{EventQueue, Timed};
 use crate::response::{
-    GroupContact, Resolution, conjugate_factor, conjugate_step, resolve, resolve_simultaneous,
+    GroupContact, conjugate_factor, conjugate_step, resolve_at, resolve_simultaneous,
 };
 use crate::{Body, Collision, Integrator, Settings, StepProfile, StepStats, Tether, TimeOfImpact};
 
@@ -1628,20 +1628,14 @@ impl Solver {
         // A drift's velocity is its body's velocity at the middle of the step (both built-in
         // integrators' is): at the impact, at `t`, a body under its own acceleration moves at
         // that plus its acceleration times `t − dt/2`. A bounce answers the pair's speed then.
-        let lag = (eb.acceleration - ea.acceleration).dot(normal) * (t - 0.5 * ctx.dt);
-        let mut r = if resting || lag == 0.0 {
-            // Two spheres under gravity alone (no lag), or a contact brought to rest.
-            resolve(ima, imb, sa.velocity, sb.velocity, normal, restitution)
+        // Two spheres under gravity alone have no lag, and a contact brought to rest is held
+        // on its drifts.
+        let lag = if resting {
+            0.0
         } else {
-            bounce(
-                ima,
-                imb,
-                (sa.velocity, sb.velocity),
-                normal,
-                restitution,
-                lag,
-            )
+            (eb.acceleration - ea.acceleration).dot(normal) * (t - 0.5 * ctx.dt)
         };
+        let mut r = resolve_at(ima, imb, sa.velocity, sb.velocity, normal, restitution, lag);
         if resting {
             // Keep undoing an overlap deeper than the allowance, as the step's resting solve
             // began to: stopping the pair dead here would cancel that and let a pressed pile
@@ -1763,45 +1757,6 @@ pub(crate) fn prefetch<T>(value: &T) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = value;
-}
-
-/// An impact of restitution `restitution` between bodies drifting at `velocity` (a, b) along
-/// `normal` (from a to b), whose speed along the normal at the instant of impact differs from
-/// the drifts' by `lag` (their accelerations differ: a ball striking the floor under gravity;
-/// see [`Solver::resolve_event`]). The impulse answers that instant's speed (restitution times
-/// it, reversed), and is at least what stops the drifts closing. Applied to the drifts, it
-/// leaves the pair's velocities at the step's end where the same bounce at the instant of
-/// impact would: a ball dropped on the floor, elastic, bounces back to its height, where one
-/// answering the drift's speed gained up to `g·dt` at each bounce and, its bounces in step with
-/// the steps, kept gaining (regression test `regression_bouncing_ball_energy.rs`).
-fn bounce(
-    inverse_mass_a: f64,
-    inverse_mass_b: f64,
-    (velocity_a, velocity_b): (DVec3, DVec3),
-    normal: DVec3,
-    restitution: f64,
-    lag: f64,
-) -> Resolution {
-    let drift_speed = (velocity_b - velocity_a).dot(normal);
-    let inverse_sum = inverse_mass_a + inverse_mass_b;
-    if drift_speed >= 0.0 || inverse_sum == 0.0 {
-        return Resolution {
-            velocity_a,
-            velocity_b,
-            impulse: 0.0,
-        };
-    }
-    let restitution = if restitution >= 0.0 {
-        restitution.min(1.0)
-    } else {
-        0.0
-    };
-    let impulse = (-(1.0 + restitution) * (drift_speed + lag)).max(-drift_speed) / inverse_sum;
-    Resolution {
-        velocity_a: velocity_a - normal * (impulse * inverse_mass_a),
-        velocity_b: velocity_b + normal * (impulse * inverse_mass_b),
-        impulse,
-    }
 }
 
 /// [`prefetch`] for both ends of `value` (which spans at most two cache lines).

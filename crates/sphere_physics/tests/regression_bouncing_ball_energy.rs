@@ -96,6 +96,18 @@ fn apexes_of(
     tops
 }
 
+/// At least five bounces, each rising to within 0.5% of `height`.
+fn assert_back_to(tops: &[f64], height: f64, what: &str) {
+    assert!(tops.len() >= 5, "{what}: {} bounces", tops.len());
+    for (n, top) in tops.iter().enumerate() {
+        let ratio = top / height;
+        assert!(
+            (0.995..=1.005).contains(&ratio),
+            "{what}: bounce {n} rose to {top} m ({ratio} of it)"
+        );
+    }
+}
+
 /// Elastic: every bounce over 30 s returns the ball to within 0.5% of its drop height (the
 /// step ends sample the top of each arc: up to `g·dt²/8`, 0.34 mm, below it). Measured with
 /// the fix over 100 heights and a minute each: 0.99896 to 1.00114 of the height. Before it:
@@ -107,18 +119,7 @@ fn regression_an_elastic_ball_bounces_back_to_its_height() {
         for height in heights.clone() {
             let (mut world, ball) = drop(integrator, height, 1.0);
             let tops = apexes(&mut world, ball, usize::MAX, 30 * 60);
-            assert!(
-                tops.len() >= 5,
-                "{integrator:?} from {height} m: {} bounces",
-                tops.len()
-            );
-            for (n, top) in tops.iter().enumerate() {
-                let ratio = top / height;
-                assert!(
-                    (0.995..=1.005).contains(&ratio),
-                    "{integrator:?} from {height} m: bounce {n} rose to {top} m ({ratio} of it)"
-                );
-            }
+            assert_back_to(&tops, height, &format!("{integrator:?} from {height} m"));
         }
     }
 }
@@ -172,18 +173,11 @@ fn regression_a_ball_bouncing_in_a_v_keeps_its_height() {
                 )
                 .unwrap();
             let tops = apexes_above(&mut world, ball, touching, 30 * 60);
-            assert!(
-                tops.len() >= 5,
-                "{integrator:?} from {height} m: {} bounces",
-                tops.len()
+            assert_back_to(
+                &tops,
+                height,
+                &format!("{integrator:?} from {height} m into the V"),
             );
-            for (n, top) in tops.iter().enumerate() {
-                let ratio = top / height;
-                assert!(
-                    (0.995..=1.005).contains(&ratio),
-                    "{integrator:?} from {height} m into the V: bounce {n} rose to {top} m ({ratio} of it)"
-                );
-            }
         }
     }
 }

@@ -258,8 +258,8 @@ pub fn resolve_simultaneous(
     }
 }
 
-/// The most contacts [`resolve_simultaneous`] solves exactly, by pivoting (see
-/// [`compress_exactly`]); larger groups are swept. Sweeps converge slowly, or not within
+/// The most contacts [`resolve_simultaneous`] solves exactly, by block principal pivoting;
+/// larger groups are swept. Sweeps converge slowly, or not within
 /// [`MAX_GROUP_SWEEPS`], where contacts are nearly dependent (five spheres touching pairwise):
 /// a ball pit's landing solves thousands of groups of 9 to 64 contacts, which took 150 sweeps
 /// each on average.

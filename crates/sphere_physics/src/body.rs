@@ -75,7 +75,8 @@ pub struct SphereDesc {
 /// oscillates within a relative `~(ω·dt)²/8` and does not drift. A string that goes from slack
 /// to taut within a step is approximated: the whole step's drift is bent, so a collision in that
 /// step is timed on the bent drift (off by at most a fraction of the step), though resolved with
-/// the sphere's free velocity.
+/// the sphere's free velocity before the string catches it (when its straight free path reaches
+/// the length) and with the string taut from then on.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tether {

@@ -1170,7 +1170,10 @@ impl Solver {
     }
 
     /// Whether segment `k`'s string is at its length at time `t`: its drift was bent, and at
-    /// `t` the sphere is no farther inside the length than the bent drift can dip.
+    /// `t` the sphere is no farther inside the length than the bent drift can dip, or the
+    /// string has caught it by then (slack when the drift began, the sphere's free path has
+    /// reached the length by `t`; the bent drift, a chord from inside the length, is still
+    /// short of it).
     fn taut_at(&self, k: usize, t: f64) -> bool {
         if !self.strings {
             return false;
@@ -1180,13 +1183,54 @@ impl Solver {
                 tether,
                 taut: true,
                 sag,
+                free_velocity,
                 ..
             }) => {
-                let distance = (self.segments[k].position_at(t) - tether.anchor).length();
-                tether.length - distance <= 1.5 * sag + 1e-12 * tether.length
+                let segment = &self.segments[k];
+                let distance = (segment.position_at(t) - tether.anchor).length();
+                if tether.length - distance <= 1.5 * sag + 1e-12 * tether.length {
+                    return true;
+                }
+                // The free path and the bent drift both start at the segment's position: a
+                // straight line, once past the length, stays past it.
+                let free = segment.position + free_velocity * (t - segment.t0);
+                (free - tether.anchor).length() >= tether.length * (1.0 - 1e-12)
             }
             _ => false,
         }
+    }
+
+    /// When segment `k`'s string, slack now, catches it within the step: the time its free
+    /// path (from the segment's position, at its free velocity) reaches the string's length.
+    /// `None` if it has no string, or the string bends nothing this step.
+    fn catch_time(&self, k: usize) -> Option<f64> {
+        let &Strung {
+            tether,
+            taut: true,
+            free_velocity: v,
+            ..
+        } = self.strung(k)?
+        else {
+            return None;
+        };
+        let segment = &self.segments[k];
+        let r = segment.position - tether.anchor;
+        // |r + v s|² = L², for the root s >= 0 (one, with the sphere inside the length).
+        let (a, b, c) = (
+            v.length_squared(),
+            r.dot(v),
+            r.length_squared() - tether.length * tether.length,
+        );
+        if c >= 0.0 {
+            return Some(segment.t0);
+        }
+        let root = (b * b - a * c).sqrt();
+        let s = if b >= 0.0 {
+            -c / (b + root)
+        } else {
+            (root - b) / a
+        };
+        s.is_finite().then_some(segment.t0 + s)
     }
 
     fn is_current(&self, event: &Event) -> bool {
@@ -1581,12 +1625,23 @@ impl Solver {
             if !(self.strings || ends_overlapping) {
                 self.tested.push((i as u32, j as u32));
             }
-            let time = (t + toi).min(ctx.dt);
+            let mut time = (t + toi).min(ctx.dt);
             if time == self.settled_time
                 && !self.settled.is_empty()
                 && self.settled.contains(&Settled::now(&self.versions, i, j))
             {
-                return;
+                // Settled now, on the free velocities of a string still slack; but if the
+                // string catches its sphere later in the step, the drift it bends closes on
+                // the other: look again once it has caught (then the string holds it).
+                match [i, j]
+                    .into_iter()
+                    .filter_map(|k| self.catch_time(k))
+                    .filter(|&catch| catch > time && catch <= ctx.dt)
+                    .reduce(f64::min)
+                {
+                    Some(catch) => time = catch,
+                    None => return,
+                }
             }
             self.queue.push(Event {
                 time,

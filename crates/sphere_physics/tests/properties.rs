@@ -166,14 +166,10 @@ fn the_step_reports_the_largest_overlap_of_a_resting_column() {
     assert!(overlapping > 200, "{overlapping} of 300 steps overlapped");
 }
 
-/// A sphere as `strung_scene` draws it: velocity, radius, log10 of the density, restitution,
-/// and maybe a string (its length and its slack at the start).
-type Strung = ((f64, f64, f64), f64, f64, f64, Option<(f64, f64)>);
-
 /// Spheres at a few metres a second on a lattice of spacing 1 (four by four per layer), about
 /// half of them hanging on strings from anchors straight above (0.5 to 3 m, up to 5 cm slack):
 /// swinging, caught by their strings, striking the free ones and each other.
-fn strung_scene() -> impl Strategy<Value = Vec<Strung>> {
+fn strung_scene() -> impl Strategy<Value = Vec<common::Strung>> {
     prop::collection::vec(
         (
             (-3.0..3.0f64, -3.0..3.0f64, -3.0..3.0f64),
@@ -204,19 +200,7 @@ proptest! {
             integrator: if leapfrog { IntegratorKind::Leapfrog } else { IntegratorKind::SemiImplicitEuler },
             ..Settings::with_gravity(DVec3::new(0.0, if gravity { -9.81 } else { 0.0 }, 0.0))
         };
-        let mut world = World::new(settings);
-        for (i, &((vx, vy, vz), r, density, e, string)) in spheres.iter().enumerate() {
-            let at = DVec3::new((i % 4) as f64, ((i / 4) % 4) as f64, (i / 16) as f64);
-            let mut sphere = SphereDesc::new(r)
-                .at(at)
-                .moving(DVec3::new(vx, vy, vz))
-                .with_density(10f64.powf(density))
-                .with_restitution(e);
-            if let Some((length, slack)) = string {
-                sphere = sphere.tethered(at + DVec3::new(0.0, length, 0.0), length + slack);
-            }
-            world.add_sphere(sphere).unwrap();
-        }
+        let mut world = common::strung_world(&spheres, settings);
         let dt = 1.0 / steps_per_second;
         let mut deferred = 0;
         for step in 0..60 {

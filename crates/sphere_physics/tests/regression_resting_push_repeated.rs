@@ -10,34 +10,15 @@
 //! already parts. Found by the property test of strings among free spheres (`properties.rs`,
 //! a scene it drew at another seed).
 
+mod common;
+
+use common::Strung;
 use sphere_physics::glam::DVec3;
-use sphere_physics::{BodyId, Settings, SphereDesc, World};
-
-type Sphere = ((f64, f64, f64), f64, f64, f64, Option<(f64, f64)>);
-
-/// The scene as the property test draws it: spheres on a lattice of spacing 1 (four by four
-/// per layer), with velocity, radius, log10 of density, restitution and maybe a string (length
-/// above, slack), under gravity.
-fn world(spheres: &[Sphere]) -> World {
-    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-    for (i, &((vx, vy, vz), r, density, e, string)) in spheres.iter().enumerate() {
-        let at = DVec3::new((i % 4) as f64, ((i / 4) % 4) as f64, (i / 16) as f64);
-        let mut sphere = SphereDesc::new(r)
-            .at(at)
-            .moving(DVec3::new(vx, vy, vz))
-            .with_density(10f64.powf(density))
-            .with_restitution(e);
-        if let Some((length, slack)) = string {
-            sphere = sphere.tethered(at + DVec3::new(0.0, length, 0.0), length + slack);
-        }
-        world.add_sphere(sphere).unwrap();
-    }
-    world
-}
+use sphere_physics::{BodyId, Settings};
 
 #[test]
 fn a_resting_push_is_not_repeated_at_one_instant() {
-    let still: Sphere = ((0.0, 0.0, 0.0), 0.05, 0.0, 0.0, None);
+    let still: Strung = ((0.0, 0.0, 0.0), 0.05, 0.0, 0.0, None);
     let mut spheres = vec![still; 27];
     spheres[0] = (
         (1.5619882553880882, 0.0, 2.8240751294336164),
@@ -102,7 +83,9 @@ fn a_resting_push_is_not_repeated_at_one_instant() {
         0.0,
         None,
     );
-    let mut world = world(&spheres);
+    // As the property test draws it: on a lattice, under gravity, semi-implicit Euler.
+    let gravity = Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0));
+    let mut world = common::strung_world(&spheres, gravity);
     let ids: Vec<BodyId> = world.bodies().iter().map(|b| b.id()).collect();
     let (strung, heavy) = (ids[1], ids[26]);
     let mut pushes_seen = 0;

@@ -1,6 +1,7 @@
 //! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
 //! cases it found, the creep allowance, a sheet of spheres over fixed ones, head-on pairs
-//! that must each collide within one step, and a pit of spheres dropped into an open box.
+//! that must each collide within one step, a pit of spheres dropped into an open box, and
+//! spheres among others hanging on strings.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
@@ -174,4 +175,27 @@ pub fn pit(count: u32, seed: u64, restitution: f64, radius: f64, spare: f64) -> 
     .unwrap()
     .build()
     .unwrap()
+}
+
+/// A sphere among strung ones: velocity, radius, log10 of the density, restitution, and maybe a
+/// string (its length above the sphere, and its slack at the start).
+pub type Strung = ((f64, f64, f64), f64, f64, f64, Option<(f64, f64)>);
+
+/// A world with `settings` and one sphere per entry of `spheres`, on a lattice of spacing 1
+/// (four by four per layer), those with a string hanging from an anchor straight above.
+pub fn strung_world(spheres: &[Strung], settings: Settings) -> World {
+    let mut world = World::new(settings);
+    for (i, &((vx, vy, vz), r, density, e, string)) in spheres.iter().enumerate() {
+        let at = DVec3::new((i % 4) as f64, ((i / 4) % 4) as f64, (i / 16) as f64);
+        let mut sphere = SphereDesc::new(r)
+            .at(at)
+            .moving(DVec3::new(vx, vy, vz))
+            .with_density(10f64.powf(density))
+            .with_restitution(e);
+        if let Some((length, slack)) = string {
+            sphere = sphere.tethered(at + DVec3::new(0.0, length, 0.0), length + slack);
+        }
+        world.add_sphere(sphere).unwrap();
+    }
+    world
 }

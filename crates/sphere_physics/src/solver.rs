@@ -1720,8 +1720,15 @@ impl Solver {
             let band = contact_band(&sa, &sb, ctx.settings);
             let press = self.press(a, b, normal);
             let parting = (sb.velocity - sa.velocity).dot(normal);
-            let bias = self.correction(reach - distance, band, press, ctx)
-                - if parting > 0.0 { parting } else { 0.0 };
+            let correction = self.correction(reach - distance, band, press, ctx);
+            let bias = if parting > 0.0 {
+                // What is left of the push once the parting counts, unless only rounding is
+                // (then the pair takes no impulse, and settles).
+                let left = correction - parting;
+                if left > 1e-9 * correction { left } else { 0.0 }
+            } else {
+                correction
+            };
             if bias > 0.0 {
                 let extra = bias / (ima + imb);
                 r.velocity_a -= normal * (extra * ima);

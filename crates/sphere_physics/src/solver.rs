@@ -465,6 +465,10 @@ const FALLBACK_FINISH_SWEEPS: u32 = 1024;
 /// The most Gauss–Seidel sweeps over the resting contacts in one step.
 const RESTING_SWEEPS: u32 = 64;
 
+/// The most of an overlap a resting contact's push undoes in one step, as a fraction of the
+/// smaller radius (see `Solver::correction`).
+const MAX_CORRECTION: f64 = 0.1;
+
 /// The most sweeps of each of [`Solver::fall_back`]'s rounds after the first, which start
 /// from the impulses the rounds before found (a landing pit of 10 000: 48 µs a sphere a step
 /// instead of 62 with 64 sweeps, the same deepest overlap, 0.76 mm).
@@ -1392,7 +1396,14 @@ impl Solver {
             let bias = if resting {
                 let reach = sa.radius() + sb.radius();
                 let press = self.press(a, b, normal);
-                self.correction(reach - distance, contact_band(sa, sb, settings), press, ctx)
+                let band = contact_band(sa, sb, settings);
+                self.correction(
+                    reach - distance,
+                    band,
+                    press,
+                    sa.radius().min(sb.radius()),
+                    ctx,
+                )
             } else {
                 0.0
             };
@@ -1720,7 +1731,8 @@ impl Solver {
             let band = contact_band(&sa, &sb, ctx.settings);
             let press = self.press(a, b, normal);
             let parting = (sb.velocity - sa.velocity).dot(normal);
-            let correction = self.correction(reach - distance, band, press, ctx);
+            let smaller = sa.radius().min(sb.radius());
+            let correction = self.correction(reach - distance, band, press, smaller, ctx);
             let bias = if parting > 0.0 {
                 // What is left of the push once the parting counts, unless only rounding is
                 // (then the pair takes no impulse, and settles).

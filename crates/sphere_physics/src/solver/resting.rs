@@ -70,7 +70,8 @@ impl Solver {
         // Separating as slowly as a resting pair may approach counts too: in a stack all fall
         // together at the start of the step, and only the solve shows which contacts hold.
         let rests = |press: f64| {
-            let bias = self.correction(reach - distance, band, press, ctx);
+            let smaller = si.radius().min(sj.radius());
+            let bias = self.correction(reach - distance, band, press, smaller, ctx);
             let window = self.resting_scale * press;
             let out = approach < -(window + bias) || approach > window;
             (!(out || (window == 0.0 && bias == 0.0)), bias)
@@ -170,16 +171,20 @@ impl Solver {
     }
 
     /// The separating speed that undoes, over a step, the part of a resting pair's `overlap`
-    /// deeper than a quarter of the creep distance (plus the contact `band`).
+    /// deeper than a quarter of the creep distance (plus the contact `band`), at most
+    /// [`MAX_CORRECTION`] of the `smaller` radius a step: an overlap as deep as a sphere (one
+    /// placed inside others) is undone over steps, and one that no velocity can undo (a sphere
+    /// overlapping fixed ones on opposite sides) cannot fling its sphere away.
     pub(super) fn correction(
         &self,
         overlap: f64,
         band: f64,
         press: f64,
+        smaller: f64,
         ctx: &StepContext<'_>,
     ) -> f64 {
         let slop = 0.25 * self.creep_scale * press * ctx.dt + band;
-        (overlap - slop).max(0.0) / ctx.dt
+        ((overlap - slop).max(0.0) / ctx.dt).min(MAX_CORRECTION * smaller / ctx.dt)
     }
 
     /// When the step's collision budget runs out at time `t` (a crowd landing at once, where
@@ -275,7 +280,7 @@ impl Solver {
                     let allowed = if gap > 0.0 {
                         (gap - 0.5 * band).max(0.0) / rest
                     } else {
-                        -self.correction(-gap, band, press, ctx)
+                        -self.correction(-gap, band, press, sa.radius().min(sb.radius()), ctx)
                     };
                     self.tested.push(key);
                     self.push_resting(key.0, key.1, normal, -allowed, press, gap > band);

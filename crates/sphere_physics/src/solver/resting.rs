@@ -69,8 +69,8 @@ impl Solver {
         let approach = -(sj.velocity - si.velocity).dot(normal);
         // Separating as slowly as a resting pair may approach counts too: in a stack all fall
         // together at the start of the step, and only the solve shows which contacts hold.
+        let smaller = si.radius().min(sj.radius());
         let rests = |press: f64| {
-            let smaller = si.radius().min(sj.radius());
             let bias = self.correction(reach - distance, band, press, smaller, ctx);
             let window = self.resting_scale * press;
             let out = approach < -(window + bias) || approach > window;

@@ -511,14 +511,32 @@ impl Solver {
         let threshold = self.sweep_threshold();
         self.order_resting(ctx);
         self.push_saved.clear();
-        // A push faster than a resting speed (a deep overlap, not a stack's creep) is solved
-        // apart and leaves no speed.
-        if self.resting.iter().any(|c| c.bias > self.resting_speed) {
+        let pushing = self.resting.iter().any(|c| c.bias > 0.0);
+        if pushing {
             self.save_push_bodies();
+        }
+        // A push faster than a resting speed (a deep overlap, not a stack's creep) is solved
+        // apart and leaves no speed; so are slower ones that sent a body off faster than a
+        // push may (contacts on nearly opposite sides).
+        if self.resting.iter().any(|c| c.bias > self.resting_speed) {
             self.solve_pushes(threshold, ctx);
         } else {
             self.warm_start(ctx);
             self.sweep_resting(threshold, RESTING_SWEEPS);
+            if pushing && self.pushed_too_fast(ctx) {
+                for c in &mut self.resting {
+                    c.impulse = 0.0;
+                }
+                for &(k, before) in &self.push_bodies {
+                    self.segments[k as usize].velocity = before;
+                }
+                self.solve_pushes(threshold, ctx);
+            }
+        }
+        if pushing {
+            for &(k, _) in &self.push_bodies {
+                self.local_index[k as usize] = NOT_LOCAL;
+            }
         }
         self.record_resting(0.0, ctx, stats);
         self.keep_resting_loads(ctx);
@@ -547,7 +565,8 @@ impl Solver {
         }
     }
 
-    /// Lists the resting contacts' dynamic bodies, for [`Solver::solve_pushes`].
+    /// Lists the resting contacts' dynamic bodies, for [`Solver::solve_pushes`] (each one's
+    /// [`Solver::local_index`] its place in the list, until the resting solve ends).
     fn save_push_bodies(&mut self) {
         self.clear_touched();
         for k in 0..self.resting.len() {
@@ -567,9 +586,21 @@ impl Solver {
         self.clear_touched();
     }
 
+    /// Whether a body of the resting contacts left their solve faster, against its velocity
+    /// before it (in [`Solver::push_bodies`]), than that velocity's speed and a push's cap
+    /// together: then the solve's pushes, not the load, sent it off.
+    fn pushed_too_fast(&self, ctx: &StepContext<'_>) -> bool {
+        self.push_bodies.iter().any(|&(k, before)| {
+            let segment = &self.segments[k as usize];
+            let most = MAX_CORRECTION * segment.radius() / ctx.dt + before.length();
+            (segment.velocity - before).length_squared() > most * most
+        })
+    }
+
     /// Solves the resting contacts in two parts when a contact's push against its overlap
-    /// (see [`Solver::correction`]) is faster than [`Solver::resting_speed`] (a stack's creep
-    /// is undone by slower ones, which stay in the velocities, as a resting speed does): first
+    /// (see [`Solver::correction`]) is faster than [`Solver::resting_speed`], or slower ones
+    /// sent a body off too fast (see [`Solver::pushed_too_fast`]); a stack's creep is undone
+    /// by pushes that stay in the velocities, as a resting speed does. First
     /// without the pushes, then the pushes on top, scaled down
     /// until no body moves faster than [`MAX_CORRECTION`] of its radius a step against the
     /// first part's velocity (at most [`PUSH_ROUNDS`] times). What the pushes add to each
@@ -633,9 +664,6 @@ impl Solver {
             for (c, &(_, impulse, _)) in self.resting.iter_mut().zip(&self.push_saved) {
                 c.impulse = impulse;
             }
-        }
-        for &(k, _) in &self.push_bodies {
-            self.local_index[k as usize] = NOT_LOCAL;
         }
         if self.strings {
             // A body on a string keeps its push: its drift is bent to the string afterwards.

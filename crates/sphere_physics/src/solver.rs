@@ -318,7 +318,8 @@ pub(crate) struct Solver {
     local_shifts: Vec<DVec3>,
     local_first_impulses: Vec<f64>,
     /// Scratch for [`Solver::solve_pushes`]: the resting contacts' dynamic bodies with their
-    /// velocities as the solve without pushes leaves them (each body's index here is its
+    /// velocities before the solve, then as the solve without pushes leaves them (each
+    /// body's index here is its
     /// [`Solver::local_index`] meanwhile), each body's push against its cap, and each
     /// contact's push, impulse from that solve, and the scale its push is given.
     push_bodies: Vec<(u32, DVec3)>,

@@ -524,12 +524,6 @@ impl Solver {
             self.warm_start(ctx);
             self.sweep_resting(threshold, RESTING_SWEEPS);
             if pushing && self.pushed_too_fast(ctx) {
-                for c in &mut self.resting {
-                    c.impulse = 0.0;
-                }
-                for &(k, before) in &self.push_bodies {
-                    self.segments[k as usize].velocity = before;
-                }
                 self.solve_pushes(threshold, ctx);
             }
         }
@@ -597,16 +591,16 @@ impl Solver {
         })
     }
 
-    /// Solves the resting contacts in two parts when a contact's push against its overlap
-    /// (see [`Solver::correction`]) is faster than [`Solver::resting_speed`], or slower ones
-    /// sent a body off too fast (see [`Solver::pushed_too_fast`]); a stack's creep is undone
-    /// by pushes that stay in the velocities, as a resting speed does. First
-    /// without the pushes, then the pushes on top, scaled down
-    /// until no body moves faster than [`MAX_CORRECTION`] of its radius a step against the
-    /// first part's velocity (at most [`PUSH_ROUNDS`] times). What the pushes add to each
-    /// body's velocity is kept in [`Solver::pushes`]: it moves the body within the step and
-    /// is taken off at the step's end (unless an impact in the step met one of the bodies
-    /// pushed), so a push undoes an overlap without leaving a speed behind.
+    /// Solves the resting contacts (again, from the velocities in [`Solver::push_bodies`]) in
+    /// two parts when a contact's push against its overlap (see [`Solver::correction`]) is
+    /// faster than [`Solver::resting_speed`], or slower ones sent a body off too fast (see
+    /// [`Solver::pushed_too_fast`]); a stack's creep is undone by pushes that stay in the
+    /// velocities, as a resting speed does. First without the pushes, then the pushes on top,
+    /// scaled down until no body moves faster than [`MAX_CORRECTION`] of its radius a step
+    /// against the first part's velocity (at most [`PUSH_ROUNDS`] times). What the pushes add
+    /// to each body's velocity is kept in [`Solver::pushes`]: it moves the body within the
+    /// step and is taken off at the step's end (unless an impact in the step met one of the
+    /// bodies pushed), so a push undoes an overlap without leaving a speed behind.
     ///
     /// Each contact's push is capped on its own, but a sphere overlapping fixed ones on nearly
     /// opposite sides (a spawn in a gap too narrow for it) parts from both only along their
@@ -618,6 +612,10 @@ impl Solver {
         for c in &mut self.resting {
             self.push_saved.push((c.bias, 0.0, 1.0));
             c.bias = c.bias.min(0.0);
+            c.impulse = 0.0;
+        }
+        for &(k, before) in &self.push_bodies {
+            self.segments[k as usize].velocity = before;
         }
         self.warm_start(ctx);
         self.sweep_resting(threshold, RESTING_SWEEPS);

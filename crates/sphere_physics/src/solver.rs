@@ -326,8 +326,8 @@ pub(crate) struct Solver {
     push_ratios: Vec<f64>,
     push_saved: Vec<(f64, f64, f64)>,
     /// What the resting solve's pushes against overlaps added to segments' velocities this
-    /// step: taken off at its end, unless an impact met a pushed body (then cleared: every
-    /// push stays, and momentum stays kept).
+    /// step: taken off at its end, or when a pushed body meets another (see
+    /// [`Solver::end_pushes`]).
     pushes: Vec<(u32, DVec3)>,
     /// One bit per segment in [`Solver::pushes`].
     pushed_bits: Vec<u64>,
@@ -866,16 +866,24 @@ impl Solver {
                         .saturating_add(component.len() as u32);
                     continue;
                 }
-                events = events.saturating_add(component.len() as u32);
                 if !self.pushes.is_empty()
                     && component.iter().any(|e| {
                         bit(&self.pushed_bits, e.a as usize) || bit(&self.pushed_bits, e.b as usize)
                     })
                 {
-                    // A pushed body meets another: the impact answers its velocity as it is,
-                    // so every push stays (see `Solver::pushes`).
-                    self.pushes.clear();
+                    // A pushed body meets another: the pushes end here (all of them, so
+                    // momentum stays kept), and the pushed bodies' impacts are sought again
+                    // on their velocities without them (a push's speed is not the body's).
+                    self.end_pushes(event.time, ctx);
+                    for e in component {
+                        if self.is_current(e) {
+                            self.queue.push(*e);
+                        }
+                    }
+                    joined_any = true;
+                    continue;
                 }
+                events = events.saturating_add(component.len() as u32);
                 if self.join_instant(component, event.time) {
                     let joined = std::mem::take(&mut self.joined);
                     events = events.saturating_add((joined.len() - component.len()) as u32);

@@ -105,11 +105,12 @@ mod random_wedges {
         /// gravity, and it ends out of the overlap (within the creep allowance), above the gap
         /// or below it (placed near the gap's narrowest, the pushes may part it downwards).
         /// Not yet claimed: a ball placed off the middle, overlapping one side and a hair from
-        /// the other (its push sends it into the other side, an impact, then back and forth
-        /// until the collision budget's fallback solve pushes it along the normals' small
-        /// difference: 1.3 to 3 m/s in a step), and coming to rest on spheres much larger
-        /// than it (nearly opposite contacts: the resting solve leaves it moving at about
-        /// 1 cm/s).
+        /// the other (its push ends where it meets the other side, but the impacts' own
+        /// pushes against the overlap stay in its velocity: it goes back and forth until the
+        /// collision budget's fallback solve pushes it along the normals' small difference,
+        /// at up to 0.9 m/s in a step where the cap and gravity allow 0.48), and coming to
+        /// rest on spheres much larger than it (nearly opposite contacts: the resting solve
+        /// leaves it moving at about 1 cm/s).
         #[test]
         fn a_ball_wedged_anyhow_is_pushed_out_no_faster_than_the_cap(
             fixed_radius in 0.5..5.0f64,

@@ -208,9 +208,9 @@ impl Solver {
             return;
         }
         let rest = ctx.dt - t;
-        // Every push stays (see `Solver::pushes`): the solve below answers the velocities as
-        // they are.
-        self.pushes.clear();
+        // The pushes end (see `Solver::end_pushes`): the solve below answers the velocities
+        // without them.
+        self.end_pushes(t, ctx);
         for segment in &mut self.segments {
             segment.advance_to(t);
         }
@@ -675,6 +675,25 @@ impl Solver {
                 self.pushed_bits[k as usize / 64] |= 1 << (k % 64);
             }
         }
+    }
+
+    /// Takes the resting solve's pushes off their bodies' drifts at time `t` of the step (a
+    /// pushed body meets another there): each pushed body is moved to `t`, drifts on at its
+    /// velocity without its push, and is touched, for its pairs to be tested again.
+    pub(super) fn end_pushes(&mut self, t: f64, ctx: &StepContext<'_>) {
+        let pushes = std::mem::take(&mut self.pushes);
+        for &(k, push) in &pushes {
+            let k = k as usize;
+            let segment = &mut self.segments[k];
+            segment.advance_to(t);
+            segment.velocity -= push;
+            self.versions[k] += 1;
+            self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+            self.broad.update(k, &self.boxes[k]);
+            self.touch(k as u32);
+        }
+        self.pushes = pushes;
+        self.pushes.clear();
     }
 
     /// After the resting solve: keeps its impulses for the next step's warm start, its loads

@@ -108,7 +108,11 @@ mod random_wedges {
         /// the other (its push ends where it meets the other side, but the impacts' own
         /// pushes against the overlap stay in its velocity: it goes back and forth until the
         /// collision budget's fallback solve pushes it along the normals' small difference,
-        /// at up to 0.9 m/s in a step where the cap and gravity allow 0.48), and coming to
+        /// at up to 0.9 m/s in a step where the cap and gravity allow 0.48; over a grid of
+        /// 2 430 placements, off the middle by 0.2 to 1.1 of the half-gap, on fixed radii 0.5
+        /// to 3, ball radii 0.05 to 0.5, at 30 to 240 Hz, 537 gained more than that in a step,
+        /// the worst 14 times as much; keeping the impacts' pushes as the resting solve's,
+        /// taken off where the body next meets another, made it 651 and 25 times), and coming to
         /// rest on spheres much larger than it (nearly opposite contacts: the resting solve
         /// leaves it moving at about 1 cm/s).
         #[test]

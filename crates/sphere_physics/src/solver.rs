@@ -237,6 +237,8 @@ pub(crate) struct Solver {
     resting: Vec<RestingContact>,
     /// Scratch for [`Solver::fall_back`]: the pairs it has solved, sorted.
     fallback_pairs: Vec<(u32, u32)>,
+    /// Scratch for [`Solver::fall_back`]: the deep pushes it holds back, `(a, b, push)`.
+    fallback_pushes: Vec<(u32, u32, f64)>,
     /// Pairs touching but not resting, or apart by less than [`Solver::near_reach`] beyond the
     /// contact band with a body that rested in the last step, at the start of the step:
     /// `(a, b, normal, distance)`. Those with a body in a resting contact join the resting
@@ -317,6 +319,8 @@ pub(crate) struct Solver {
     /// `resolve_group`), and the impulses of the group's first solve when a second is needed.
     local_shifts: Vec<DVec3>,
     local_first_impulses: Vec<f64>,
+    /// Scratch for [`Solver::resolve_pushing_group`]: the group's contacts' pushes.
+    local_biases: Vec<f64>,
     /// Scratch for [`Solver::solve_pushes`]: the resting contacts' dynamic bodies with their
     /// velocities before the solve, then as the solve without pushes leaves them (each
     /// body's index here is its
@@ -331,6 +335,11 @@ pub(crate) struct Solver {
     pushes: Vec<(u32, DVec3)>,
     /// One bit per segment in [`Solver::pushes`].
     pushed_bits: Vec<u64>,
+    /// How much of its push budget each segment has spent this step (see
+    /// [`Solver::push_left`]), valid where its bit in [`Solver::spent_bits`] is set.
+    spent: Vec<f64>,
+    /// One bit per segment that has spent some of its push budget this step.
+    spent_bits: Vec<u64>,
 }
 
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
@@ -667,6 +676,11 @@ impl Solver {
         self.pushes.clear();
         self.pushed_bits.clear();
         self.pushed_bits.resize(words, 0);
+        self.spent_bits.clear();
+        self.spent_bits.resize(words, 0);
+        if self.spent.len() < self.segments.len() {
+            self.spent.resize(self.segments.len(), 0.0);
+        }
         if self.rested.len() == words && self.resting_scale > 0.0 {
             for (w, &word) in self.rested.iter().enumerate() {
                 let mut word = word;
@@ -1514,12 +1528,25 @@ impl Solver {
                 self.local_shifts.push(shift);
             }
         }
-        resolve_simultaneous(
-            &self.local_inverse_masses,
-            &mut self.local_velocities,
-            &self.local_contacts,
-            &mut self.local_impulses,
-        );
+        // (A taut string's contact, after the events', pushes nothing.)
+        let deep = self.local_contacts.iter().any(|c| {
+            c.bias > 0.0 && {
+                let radius =
+                    |local: usize| self.segments[self.local_bodies[local] as usize].radius();
+                self.deep_push(c.bias, radius(c.a).min(radius(c.b)), ctx)
+            }
+        });
+        if deep {
+            // (Only resting contacts push: the group is not shifted.)
+            self.resolve_pushing_group(ctx);
+        } else {
+            resolve_simultaneous(
+                &self.local_inverse_masses,
+                &mut self.local_velocities,
+                &self.local_contacts,
+                &mut self.local_impulses,
+            );
+        }
         if shifted {
             for (velocity, shift) in self.local_velocities.iter_mut().zip(&self.local_shifts) {
                 *velocity -= *shift;
@@ -1793,11 +1820,21 @@ impl Solver {
             } else {
                 correction
             };
-            if bias > 0.0 {
-                let extra = bias / (ima + imb);
+            // No more than what is left of either body's push budget this step: impacts
+            // against an overlap one after another (a ball bouncing between a fixed sphere it
+            // overlaps and one beside it) would otherwise each push it anew.
+            let mut extra = bias / (ima + imb);
+            for (k, im) in [(a, ima), (b, imb)] {
+                if im > 0.0 {
+                    extra = extra.min(self.push_left(k, ctx) / im);
+                }
+            }
+            if extra > 0.0 {
                 r.velocity_a -= normal * (extra * ima);
                 r.velocity_b += normal * (extra * imb);
                 r.impulse += extra;
+                self.spend_push(a, extra * ima);
+                self.spend_push(b, extra * imb);
             }
         }
         self.set_velocity(a, r.velocity_a, t, ctx);

@@ -90,7 +90,7 @@ mod random_wedges {
     use sphere_physics::{Settings, SphereDesc, World};
 
     fn config() -> ProptestConfig {
-        let mut config = ProptestConfig::with_cases(64);
+        let mut config = ProptestConfig::with_cases(256);
         if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
             config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x5EED_5EED);
         }
@@ -99,22 +99,16 @@ mod random_wedges {
 
     proptest! {
         #![proptest_config(config())]
-        /// A ball placed overlapping two fixed spheres of any size, over the middle of a gap
-        /// of any width below its diameter, at any height, of any restitution, at 30 to 240
-        /// steps a second: no step adds more to its speed than its push's cap and a step of
-        /// gravity, and it ends out of the overlap (within the creep allowance), above the gap
-        /// or below it (placed near the gap's narrowest, the pushes may part it downwards).
-        /// Not yet claimed: a ball placed off the middle, overlapping one side and a hair from
-        /// the other (its push ends where it meets the other side, but the impacts' own
-        /// pushes against the overlap stay in its velocity: it goes back and forth until the
-        /// collision budget's fallback solve pushes it along the normals' small difference,
-        /// at up to 0.9 m/s in a step where the cap and gravity allow 0.48; over a grid of
-        /// 2 430 placements, off the middle by 0.2 to 1.1 of the half-gap, on fixed radii 0.5
-        /// to 3, ball radii 0.05 to 0.5, at 30 to 240 Hz, 537 gained more than that in a step,
-        /// the worst 14 times as much; keeping the impacts' pushes as the resting solve's,
-        /// taken off where the body next meets another, made it 651 and 25 times), and coming to
-        /// rest on spheres much larger than it (nearly opposite contacts: the resting solve
-        /// leaves it moving at about 1 cm/s).
+        /// A ball placed overlapping two fixed spheres of any size (or one, and a hair from
+        /// the other), over a gap of any width below its diameter, anywhere from its middle
+        /// to a little past its edge, at any height, of any restitution, at 30 to 240 steps a
+        /// second: no step adds more to its speed than its push's cap and a step of gravity,
+        /// and it ends out of the overlap (within the creep allowance), above the gap, below
+        /// it (placed near the gap's narrowest, the pushes may part it downwards) or beside
+        /// it. Off the middle this failed until 2026-12-03 (see `regression_off_centre_wedge.rs`).
+        /// Not yet claimed: coming to rest on spheres much larger than it (nearly opposite
+        /// contacts: the resting solve leaves it moving at about 1 cm/s; 2 of the 2 430
+        /// placements there end 5% of the ball's radius into a fixed sphere after 4 s).
         #[test]
         fn a_ball_wedged_anyhow_is_pushed_out_no_faster_than_the_cap(
             fixed_radius in 0.5..5.0f64,
@@ -123,6 +117,7 @@ mod random_wedges {
             height in 0.0..0.9f64,
             restitution in 0.0..=1.0f64,
             hz in 30.0..240.0f64,
+            aside in 0.0..1.2f64,
         ) {
             let dt = 1.0 / hz;
             let g = 9.81;
@@ -137,7 +132,7 @@ mod random_wedges {
             }
             let reach = fixed_radius + radius;
             let rest = (reach * reach - half * half).sqrt();
-            let start = DVec3::new(0.0, height * rest, 0.0);
+            let start = DVec3::new(aside * (half - fixed_radius), height * rest, 0.0);
             let ball = world
                 .add_sphere(SphereDesc::new(radius).at(start).with_restitution(restitution))
                 .unwrap();
@@ -156,7 +151,8 @@ mod random_wedges {
             let gaps = [-half, half].map(|x| (body.position() - DVec3::new(x, 0.0, 0.0)).length() - reach);
             // Within the resting contacts' creep allowance.
             prop_assert!(gaps.iter().all(|&d| d > -1e-2 * radius), "gaps {:?}", gaps);
-            prop_assert!(body.position().y > 0.0 || body.position().y < -rest, "{:?}", body.position());
+            let p = body.position();
+            prop_assert!(p.y > 0.0 || p.y < -rest || p.x.abs() > half, "{:?}", p);
         }
     }
 }

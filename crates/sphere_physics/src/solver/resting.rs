@@ -139,7 +139,8 @@ impl Solver {
     /// apart, whichever is faster. A guard takes an impulse only if the solve itself pushes
     /// its pair together (in a pile, a sphere pushed sideways by the spheres it rests on,
     /// towards a wall a hair away), never against a pair meeting of its own accord (two balls
-    /// rolling into each other on a floor meet with their restitution).
+    /// rolling into each other on a floor meet with their restitution), unless contacts push
+    /// against overlaps and it closes at a resting speed (see [`Solver::hold_guards`]).
     pub(super) fn add_guards(&mut self, ctx: &StepContext<'_>) {
         if self.near.is_empty() {
             return;
@@ -647,6 +648,12 @@ impl Solver {
         let pushing = self.resting.iter().any(|c| c.bias > 0.0);
         if pushing {
             self.save_push_bodies();
+            // A guard closing at a resting speed of its own accord is held as a resting
+            // contact while contacts push: its meeting would stop it a moment later, and
+            // the pushes would drive bodies into it meanwhile (a small ball pushed out of one
+            // large sphere towards another a hair away sank back as much as it rose, every
+            // other step).
+            self.hold_guards(true, ctx);
         }
         // A push faster than a resting speed or half its cap (a deep overlap, not a stack's
         // creep) is solved apart and leaves no speed; so are slower ones that sent a body off
@@ -762,6 +769,33 @@ impl Solver {
         self.push_on(threshold, ctx);
     }
 
+    /// Lets each guard (a contact with a negative bias: see [`Solver::add_guards`]) close no
+    /// faster than ends the step half the contact band apart; with `resting_only`, only a
+    /// guard closing no faster than a resting speed for its pair's press within the step
+    /// (see [`Solver::press`]): its meeting would be a resting impact, restitution 0, a
+    /// moment later (two balls rolling into each other on a floor are pressed by nothing,
+    /// and keep their restitution).
+    fn hold_guards(&mut self, resting_only: bool, ctx: &StepContext<'_>) {
+        for k in 0..self.resting.len() {
+            let c = self.resting[k];
+            if c.bias >= 0.0 {
+                continue;
+            }
+            let (a, b) = (c.a as usize, c.b as usize);
+            if resting_only && -c.bias > self.resting_scale * self.press(a, b, c.normal) {
+                continue;
+            }
+            let (sa, sb) = (&self.segments[a], &self.segments[b]);
+            let gap = (sb.position - sa.position).length() - sa.radius() - sb.radius();
+            let band = contact_band(sa, sb, ctx.settings);
+            let rest = ctx.dt - sa.t0.max(sb.t0);
+            if rest > 0.0 {
+                let held = -(gap - 0.5 * band).max(0.0) / rest;
+                self.resting[k].bias = c.bias.max(held);
+            }
+        }
+    }
+
     /// The second part of [`Solver::solve_pushes`]: the contacts solved without their pushes
     /// (kept in [`Solver::push_saved`]), the pushes on top, scaled down until no body is
     /// pushed faster than what is left of its budget; what they add to each velocity is kept
@@ -777,17 +811,7 @@ impl Solver {
         // but the pushes may not bring it closer than its gap allows: a ball pushed out of a
         // fixed sphere it overlaps, a hair from another, met that one at once, which ended its
         // pushes (see `end_pushes`) step after step, and it never rose out of the gap.
-        for c in &mut self.resting {
-            if c.bias < 0.0 {
-                let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
-                let gap = (sb.position - sa.position).length() - sa.radius() - sb.radius();
-                let band = contact_band(sa, sb, ctx.settings);
-                let rest = ctx.dt - sa.t0.max(sb.t0);
-                if rest > 0.0 {
-                    c.bias = c.bias.max(-(gap - 0.5 * band).max(0.0) / rest);
-                }
-            }
-        }
+        self.hold_guards(false, ctx);
         for round in 1..=PUSH_ROUNDS {
             for (c, &(push, _, scale)) in self.resting.iter_mut().zip(&self.push_saved) {
                 if push > 0.0 {

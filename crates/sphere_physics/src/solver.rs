@@ -316,22 +316,24 @@ pub(crate) struct Solver {
     local_contacts: Vec<GroupContact>,
     local_impulses: Vec<f64>,
     /// Each local body's velocity at the instant of a group's impacts less its drift's (see
-    /// `resolve_group`), and the impulses of the group's first solve when a second is needed.
+    /// `resolve_group`), and the impulses of the group's first solve when a second is needed;
+    /// or, for [`Solver::resolve_pushing_group`], the velocities and impulses of its solve
+    /// without the pushes.
     local_shifts: Vec<DVec3>,
     local_first_impulses: Vec<f64>,
     /// Scratch for [`Solver::resolve_pushing_group`]: the group's contacts' pushes.
     local_biases: Vec<f64>,
-    /// Scratch for [`Solver::solve_pushes`]: the resting contacts' dynamic bodies with their
-    /// velocities before the solve, then as the solve without pushes leaves them (each
-    /// body's index here is its
-    /// [`Solver::local_index`] meanwhile), each body's push against its cap, and each
-    /// contact's push, impulse from that solve, and the scale its push is given.
+    /// Scratch for [`Solver::solve_pushes`] and [`Solver::push_on`]: the resting contacts'
+    /// dynamic bodies with their velocities before the solve, then as the solve without
+    /// pushes leaves them (each body's index here is its [`Solver::local_index`] meanwhile),
+    /// each body's push against what is left of its budget (see [`Solver::push_left`]), and
+    /// each contact's push, impulse from that solve, and the scale its push is given.
     push_bodies: Vec<(u32, DVec3)>,
     push_ratios: Vec<f64>,
     push_saved: Vec<(f64, f64, f64)>,
-    /// What the resting solve's pushes against overlaps added to segments' velocities this
-    /// step: taken off at its end, or when a pushed body meets another (see
-    /// [`Solver::end_pushes`]).
+    /// What the pushes against overlaps solved apart from the load (the resting solve's, and
+    /// the fallback's) added to segments' velocities this step: taken off at its end, or when
+    /// a pushed body meets another (see [`Solver::end_pushes`]).
     pushes: Vec<(u32, DVec3)>,
     /// One bit per segment in [`Solver::pushes`].
     pushed_bits: Vec<u64>,

@@ -28,6 +28,11 @@
 //!   while any contact pushes, a guard closing at a resting speed is held as a resting
 //!   contact (a small ball between spheres 60 times larger rose with its push and sank with
 //!   the guard's allowance by turns, and stayed 5% of its radius deep).
+//! - Resting on one side of the gap a hair from the other, an inelastic ball rocked between
+//!   the two for ever (at 1 to 4 cm/s, 23 of the grid's 739 inelastic placements that then
+//!   ended above the gap; now 759 end there, all at rest): each meeting was a resting impact on its own, leaving it sliding along
+//!   the side it met. A guard against a fixed sphere closing at a resting speed is now held
+//!   as a resting contact whether or not anything pushes.
 
 use sphere_physics::glam::DVec3;
 use sphere_physics::{Body, Settings, SphereDesc, World};
@@ -54,6 +59,9 @@ struct Outcome {
     worst_gain: f64,
     /// The fastest the ball moved upwards.
     fastest_up: f64,
+    /// The largest rise in a step of the ball's energy per unit mass (`v²/2 + g·y`), as a
+    /// fraction of what its pushes may add: bounces and free flight never add to it.
+    worst_energy_gain: f64,
     /// The ball at the end.
     ball: Body,
     /// How far the ball ends from each fixed sphere (negative: into it).
@@ -95,14 +103,28 @@ impl Wedge {
                     .with_restitution(self.restitution),
             )
             .unwrap();
-        let most = 0.1 * self.radius / dt + G * dt;
+        let cap = 0.1 * self.radius / dt;
+        let most = cap + G * dt;
+        let energy = |world: &World| {
+            let body = world.body(ball).unwrap();
+            0.5 * body.velocity().length_squared() + G * body.position().y
+        };
         let (mut last, mut worst_gain, mut fastest_up) = (0.0, 0.0f64, 0.0f64);
+        let (mut last_energy, mut worst_energy_gain) = (energy(&world), 0.0f64);
         for _ in 0..(4.0 * self.hz) as u32 {
             world.step(dt).unwrap();
             let velocity = world.body(ball).unwrap().velocity();
             let speed = velocity.length();
             worst_gain = worst_gain.max((speed - last) / most);
             fastest_up = fastest_up.max(velocity.y);
+            // A push of at most the cap, on a ball moving at most this fast (gravity's kick
+            // included), adds at most this much kinetic energy; a push taken off at the step's
+            // end lifts it by at most the cap for the step.
+            let moving = last.max(speed) + G * dt;
+            let allowed = (moving + cap) * cap + G * cap * dt;
+            let now = energy(&world);
+            worst_energy_gain = worst_energy_gain.max((now - last_energy) / allowed);
+            last_energy = now;
             last = speed;
         }
         let ball = world.body(ball).unwrap().clone();
@@ -112,6 +134,7 @@ impl Wedge {
         Outcome {
             worst_gain,
             fastest_up,
+            worst_energy_gain,
             ball,
             gaps,
         }
@@ -221,7 +244,7 @@ fn grid() -> Vec<Wedge> {
 
 #[test]
 fn regression_no_placement_of_the_grid_gains_more_than_the_cap_in_a_step_or_stays_inside() {
-    let (mut over, mut stuck) = (Vec::new(), Vec::new());
+    let (mut over, mut stuck, mut rocking) = (Vec::new(), Vec::new(), Vec::new());
     for wedge in grid() {
         let outcome = wedge.run();
         let name = [
@@ -231,8 +254,10 @@ fn regression_no_placement_of_the_grid_gains_more_than_the_cap_in_a_step_or_stay
             wedge.height,
             wedge.aside,
         ];
-        if outcome.worst_gain > 1.0 + 1e-9 {
-            over.push((outcome.worst_gain, name, wedge.hz));
+        // (The speed's gain alone would miss a push that turns a fall into as fast a rise.)
+        let gain = outcome.worst_gain.max(outcome.worst_energy_gain);
+        if gain > 1.0 + 1e-9 {
+            over.push((gain, name, wedge.hz));
         }
         // Out of the overlap (within the creep allowance), and above the gap, below it or
         // beside it.
@@ -241,8 +266,14 @@ fn regression_no_placement_of_the_grid_gains_more_than_the_cap_in_a_step_or_stay
         if !(out && outcome.gaps.iter().all(|&g| g > -1e-2 * wedge.radius)) {
             stuck.push((outcome.gaps, name, wedge.hz));
         }
+        // Inelastic, and above the gap between the two: at rest on both.
+        let between = p.y > 0.0 && p.x.abs() < wedge.half() - wedge.fixed_radius;
+        if wedge.restitution == 0.0 && between && outcome.ball.velocity().length() > 1e-4 {
+            rocking.push((outcome.ball.velocity().length(), name, wedge.hz));
+        }
     }
-    // Before: 537 of the 2 430, the worst 14 times the cap and a step of gravity.
+    // Before: 537 of the 2 430 by their speed, the worst 14 times the cap and a step of
+    // gravity (553 with their energy; since, at most 0.68 of what the pushes may add).
     assert!(
         over.is_empty(),
         "{} over: {:?}",
@@ -256,5 +287,15 @@ fn regression_no_placement_of_the_grid_gains_more_than_the_cap_in_a_step_or_stay
         "{} stuck: {:?}",
         stuck.len(),
         &stuck[..stuck.len().min(5)]
+    );
+    // Before: 23 of the 739 inelastic placements ending above the gap still moved at 1 to 4
+    // cm/s after 4 s (resting on one side a hair from the other, the ball rocked between
+    // the two, each meeting a resting impact on its own, which left it sliding along the
+    // side it met).
+    assert!(
+        rocking.is_empty(),
+        "{} rocking: {:?}",
+        rocking.len(),
+        &rocking[..rocking.len().min(5)]
     );
 }

@@ -106,13 +106,8 @@ mod random_wedges {
         /// and it ends out of the overlap (within the creep allowance), above the gap, below
         /// it (placed near the gap's narrowest, the pushes may part it downwards) or beside
         /// it. Off the middle this failed until 2026-12-03 (see `regression_off_centre_wedge.rs`).
-        /// Not yet claimed: coming to rest. Resting on one side a hair from the other, a
-        /// ball may rock between the two (each meeting a resting impact on its own, leaving
-        /// it sliding along the first): of the grid's 739 placements at restitution 0 that
-        /// end in the gap, 23 still move faster than 1 cm/s after 4 s. Holding every guard
-        /// that closes at a resting speed (not only while contacts push) stops them all, but
-        /// left some landing pits deeper (`regression_fallback_rounds.rs`: 2.1% of a radius
-        /// against the 2% it allows).
+        /// Coming to rest is checked on the grid of `regression_off_centre_wedge.rs`, not
+        /// here (a bouncing ball may still bounce after 4 s).
         #[test]
         fn a_ball_wedged_anyhow_is_pushed_out_no_faster_than_the_cap(
             fixed_radius in 0.5..5.0f64,

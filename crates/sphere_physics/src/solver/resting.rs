@@ -191,7 +191,8 @@ impl Solver {
     /// Whether a contact's push against its overlap, `bias`, is a deep overlap's, not a
     /// stack's creep: faster than the resting speed, or than half its cap (see
     /// [`Solver::correction`]; `smaller` is the smaller radius). Such a push is solved apart
-    /// from the contacts' load and leaves no speed.
+    /// from the contacts' load, within the bodies' budgets (see [`Solver::push_left`]); the
+    /// resting solve's and the fallback's are taken off at the step's end, leaving no speed.
     pub(super) fn deep_push(&self, bias: f64, smaller: f64, ctx: &StepContext<'_>) -> bool {
         bias > self
             .resting_speed
@@ -200,8 +201,12 @@ impl Solver {
 
     /// What is left this step of segment `k`'s push budget: the most its velocity may still
     /// be changed by pushes against overlaps, a speed. A body may be pushed
-    /// [`MAX_CORRECTION`] of its radius a step in all, by the resting solve's pushes and the
-    /// impacts' together.
+    /// [`MAX_CORRECTION`] of its radius a step in all by the pushes solved apart from the load
+    /// (the resting solve's and the fallback's, less what a push ended early did not use),
+    /// single resting impacts' pushes and the deep pushes of impacts solved together. A
+    /// stack's creep, solved with the load (in the resting solve and in a group of impacts),
+    /// is not counted, nor the resting solve's pushes in a step with strings (they stay in
+    /// the velocities).
     pub(super) fn push_left(&self, k: usize, ctx: &StepContext<'_>) -> f64 {
         let cap = MAX_CORRECTION * self.segments[k].radius() / ctx.dt;
         if bit(&self.spent_bits, k) {
@@ -653,8 +658,12 @@ impl Solver {
             // the pushes would drive bodies into it meanwhile (a small ball pushed out of one
             // large sphere towards another a hair away sank back as much as it rose, every
             // other step).
-            self.hold_guards(true, ctx);
         }
+        // (A small ball pushed out of one large sphere towards another a hair away sank back
+        // as much as it rose, every other step; resting on one side of a narrow gap a hair
+        // from the other, a ball rocked between the two, each meeting a resting impact on its
+        // own.)
+        self.hold_guards(pushing, ctx);
         // A push faster than a resting speed or half its cap (a deep overlap, not a stack's
         // creep) is solved apart and leaves no speed; so are slower ones that sent a body off
         // faster than a push may (contacts on nearly opposite sides). (Solved with the load,
@@ -739,12 +748,13 @@ impl Solver {
     }
 
     /// Solves the resting contacts (again, from the velocities in [`Solver::push_bodies`]) in
-    /// two parts when a contact's push against its overlap (see [`Solver::correction`]) is
-    /// faster than [`Solver::resting_speed`], or slower ones sent a body off too fast (see
-    /// [`Solver::pushed_too_fast`]); a stack's creep is undone by pushes that stay in the
+    /// two parts when a contact's push against its overlap (see [`Solver::correction`]) is a
+    /// deep overlap's (see [`Solver::deep_push`]), or slower ones sent a body off too fast
+    /// (see [`Solver::pushed_too_fast`]); a stack's creep is undone by pushes that stay in the
     /// velocities, as a resting speed does. First without the pushes, then the pushes on top,
-    /// scaled down until no body moves faster than [`MAX_CORRECTION`] of its radius a step
-    /// against the first part's velocity (at most [`PUSH_ROUNDS`] times). What the pushes add
+    /// scaled down until no body moves faster than its budget (see [`Solver::push_left`]; at
+    /// the step's start, [`MAX_CORRECTION`] of its radius a step) against the first part's
+    /// velocity (at most [`PUSH_ROUNDS`] times, see [`Solver::push_on`]). What the pushes add
     /// to each body's velocity is kept in [`Solver::pushes`]: it moves the body within the
     /// step and is taken off at the step's end (unless an impact in the step met one of the
     /// bodies pushed), so a push undoes an overlap without leaving a speed behind.
@@ -769,28 +779,36 @@ impl Solver {
         self.push_on(threshold, ctx);
     }
 
-    /// Lets each guard (a contact with a negative bias: see [`Solver::add_guards`]) close no
-    /// faster than ends the step half the contact band apart; with `resting_only`, only a
-    /// guard closing no faster than a resting speed for its pair's press within the step
-    /// (see [`Solver::press`]): its meeting would be a resting impact, restitution 0, a
-    /// moment later (two balls rolling into each other on a floor are pressed by nothing,
-    /// and keep their restitution).
-    fn hold_guards(&mut self, resting_only: bool, ctx: &StepContext<'_>) {
+    /// The closing speed that brings guard `c` (see [`Solver::add_guards`]) to half the
+    /// contact band apart by the step's end, as a bias (0 or negative); `None` when the
+    /// step has ended.
+    fn gap_bias(&self, c: &RestingContact, ctx: &StepContext<'_>) -> Option<f64> {
+        let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
+        let gap = (sb.position - sa.position).length() - sa.radius() - sb.radius();
+        let band = contact_band(sa, sb, ctx.settings);
+        let rest = ctx.dt - sa.t0.max(sb.t0);
+        (rest > 0.0).then(|| -(gap - 0.5 * band).max(0.0) / rest)
+    }
+
+    /// Holds each guard (see [`Solver::add_guards`]) that closes no faster than a resting
+    /// speed for its pair's press within the step (see [`Solver::press`]) to its gap, as a
+    /// resting contact: its meeting would be a resting impact, restitution 0, a moment later
+    /// (two balls rolling into each other on a floor are pressed by nothing, and keep their
+    /// restitution). Every such guard while contacts push against overlaps (`all`), and
+    /// otherwise those against a fixed sphere.
+    fn hold_guards(&mut self, all: bool, ctx: &StepContext<'_>) {
         for k in 0..self.resting.len() {
             let c = self.resting[k];
             if c.bias >= 0.0 {
                 continue;
             }
             let (a, b) = (c.a as usize, c.b as usize);
-            if resting_only && -c.bias > self.resting_scale * self.press(a, b, c.normal) {
+            if !(all || self.segments[a].is_fixed() || self.segments[b].is_fixed())
+                || -c.bias > self.resting_scale * self.press(a, b, c.normal)
+            {
                 continue;
             }
-            let (sa, sb) = (&self.segments[a], &self.segments[b]);
-            let gap = (sb.position - sa.position).length() - sa.radius() - sb.radius();
-            let band = contact_band(sa, sb, ctx.settings);
-            let rest = ctx.dt - sa.t0.max(sb.t0);
-            if rest > 0.0 {
-                let held = -(gap - 0.5 * band).max(0.0) / rest;
+            if let Some(held) = self.gap_bias(&c, ctx) {
                 self.resting[k].bias = c.bias.max(held);
             }
         }
@@ -808,10 +826,23 @@ impl Solver {
             saved.1 = c.impulse;
         }
         // A guard may close as fast as its pair does of its own accord (see `add_guards`),
-        // but the pushes may not bring it closer than its gap allows: a ball pushed out of a
-        // fixed sphere it overlaps, a hair from another, met that one at once, which ended its
-        // pushes (see `end_pushes`) step after step, and it never rose out of the gap.
-        self.hold_guards(false, ctx);
+        // but the pushes may not make it close faster, nor closer than its gap allows: a ball
+        // pushed out of a fixed sphere it overlaps, a hair from another, met that one at once,
+        // which ended its pushes (see `end_pushes`) step after step, and it never rose out of
+        // the gap. (Whatever closing the pushes would have to stop stays theirs to stop.)
+        for k in 0..self.resting.len() {
+            let c = self.resting[k];
+            if c.bias < 0.0 {
+                let (va, vb) = (
+                    self.segments[c.a as usize].velocity,
+                    self.segments[c.b as usize].velocity,
+                );
+                let own = (vb - va).dot(c.normal);
+                if let Some(held) = self.gap_bias(&c, ctx) {
+                    self.resting[k].bias = c.bias.max(own.min(held));
+                }
+            }
+        }
         for round in 1..=PUSH_ROUNDS {
             for (c, &(push, _, scale)) in self.resting.iter_mut().zip(&self.push_saved) {
                 if push > 0.0 {
@@ -876,6 +907,12 @@ impl Solver {
         let pushes = std::mem::take(&mut self.pushes);
         for &(k, push) in &pushes {
             let k = k as usize;
+            self.pushed_bits[k / 64] &= !(1 << (k % 64));
+            // What the push would have spent over the rest of the step is left to spend.
+            if bit(&self.spent_bits, k) && ctx.dt > 0.0 {
+                let unused = push.length() * ((ctx.dt - t) / ctx.dt).clamp(0.0, 1.0);
+                self.spent[k] = (self.spent[k] - unused).max(0.0);
+            }
             let segment = &mut self.segments[k];
             segment.advance_to(t);
             segment.velocity -= push;

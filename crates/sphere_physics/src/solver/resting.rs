@@ -139,8 +139,9 @@ impl Solver {
     /// apart, whichever is faster. A guard takes an impulse only if the solve itself pushes
     /// its pair together (in a pile, a sphere pushed sideways by the spheres it rests on,
     /// towards a wall a hair away), never against a pair meeting of its own accord (two balls
-    /// rolling into each other on a floor meet with their restitution), unless contacts push
-    /// against overlaps and it closes at a resting speed (see [`Solver::hold_guards`]).
+    /// rolling into each other on a floor meet with their restitution), unless it closes at
+    /// a resting speed for its pair's press and is against a fixed sphere, or contacts push
+    /// against overlaps (see [`Solver::hold_guards`]).
     pub(super) fn add_guards(&mut self, ctx: &StepContext<'_>) {
         if self.near.is_empty() {
             return;
@@ -191,8 +192,10 @@ impl Solver {
     /// Whether a contact's push against its overlap, `bias`, is a deep overlap's, not a
     /// stack's creep: faster than the resting speed, or than half its cap (see
     /// [`Solver::correction`]; `smaller` is the smaller radius). Such a push is solved apart
-    /// from the contacts' load, within the bodies' budgets (see [`Solver::push_left`]); the
-    /// resting solve's and the fallback's are taken off at the step's end, leaving no speed.
+    /// from the contacts' load, within the bodies' budgets (see [`Solver::push_left`]), by the
+    /// resting solve, by impacts solved together, and by the fallback against fixed spheres
+    /// (between dynamic ones its pushes stay in its solve); the resting solve's and the
+    /// fallback's are taken off at the step's end, leaving no speed.
     pub(super) fn deep_push(&self, bias: f64, smaller: f64, ctx: &StepContext<'_>) -> bool {
         bias > self
             .resting_speed
@@ -653,16 +656,13 @@ impl Solver {
         let pushing = self.resting.iter().any(|c| c.bias > 0.0);
         if pushing {
             self.save_push_bodies();
-            // A guard closing at a resting speed of its own accord is held as a resting
-            // contact while contacts push: its meeting would stop it a moment later, and
-            // the pushes would drive bodies into it meanwhile (a small ball pushed out of one
-            // large sphere towards another a hair away sank back as much as it rose, every
-            // other step).
         }
-        // (A small ball pushed out of one large sphere towards another a hair away sank back
-        // as much as it rose, every other step; resting on one side of a narrow gap a hair
-        // from the other, a ball rocked between the two, each meeting a resting impact on its
-        // own.)
+        // A guard closing at a resting speed of its own accord is held as a resting contact
+        // (against a fixed sphere always, any guard while contacts push): its meeting would
+        // stop it a moment later. (A small ball pushed out of one large sphere towards
+        // another a hair away sank back as much as it rose, every other step; resting on one
+        // side of a narrow gap a hair from the other, a ball rocked between the two, each
+        // meeting a resting impact on its own.)
         self.hold_guards(pushing, ctx);
         // A push faster than a resting speed or half its cap (a deep overlap, not a stack's
         // creep) is solved apart and leaves no speed; so are slower ones that sent a body off
@@ -784,9 +784,10 @@ impl Solver {
     /// step has ended.
     fn gap_bias(&self, c: &RestingContact, ctx: &StepContext<'_>) -> Option<f64> {
         let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
-        let gap = (sb.position - sa.position).length() - sa.radius() - sb.radius();
+        let now = sa.t0.max(sb.t0);
+        let gap = (sb.position_at(now) - sa.position_at(now)).length() - sa.radius() - sb.radius();
         let band = contact_band(sa, sb, ctx.settings);
-        let rest = ctx.dt - sa.t0.max(sb.t0);
+        let rest = ctx.dt - now;
         (rest > 0.0).then(|| -(gap - 0.5 * band).max(0.0) / rest)
     }
 
@@ -825,8 +826,8 @@ impl Solver {
         for (c, saved) in self.resting.iter().zip(&mut self.push_saved) {
             saved.1 = c.impulse;
         }
-        // A guard may close as fast as its pair does of its own accord (see `add_guards`),
-        // but the pushes may not make it close faster, nor closer than its gap allows: a ball
+        // A guard may close as fast as its pair does of its own accord (see `add_guards`);
+        // with the pushes, no faster than the faster of that and what its gap allows: a ball
         // pushed out of a fixed sphere it overlaps, a hair from another, met that one at once,
         // which ended its pushes (see `end_pushes`) step after step, and it never rose out of
         // the gap. (Whatever closing the pushes would have to stop stays theirs to stop.)
@@ -902,7 +903,9 @@ impl Solver {
 
     /// Takes the resting solve's pushes off their bodies' drifts at time `t` of the step (a
     /// pushed body meets another there): each pushed body is moved to `t`, drifts on at its
-    /// velocity without its push, and is touched, for its pairs to be tested again.
+    /// velocity without its push, and is touched, for its pairs to be tested again. What each
+    /// push would have spent of its body's budget over the rest of the step is given back
+    /// (see [`Solver::push_left`]).
     pub(super) fn end_pushes(&mut self, t: f64, ctx: &StepContext<'_>) {
         let pushes = std::mem::take(&mut self.pushes);
         for &(k, push) in &pushes {

@@ -1561,18 +1561,7 @@ impl Solver {
                 let (va, vb) = (velocities[c.a], velocities[c.b]);
                 (vb - va).dot(c.normal) < -1e-12 * (va.length() + vb.length())
             }) {
-                self.local_first_impulses.clear();
-                self.local_first_impulses
-                    .extend_from_slice(&self.local_impulses);
-                for c in &mut self.local_contacts {
-                    c.restitution = 0.0;
-                }
-                resolve_simultaneous(
-                    &self.local_inverse_masses,
-                    &mut self.local_velocities,
-                    &self.local_contacts,
-                    &mut self.local_impulses,
-                );
+                self.resolve_local_again();
                 for (impulse, first) in self
                     .local_impulses
                     .iter_mut()
@@ -1610,6 +1599,24 @@ impl Solver {
             }
             self.record_collision((a, b), t, c.normal, impulse, resting, ctx);
         }
+    }
+
+    /// Solves a group's contacts (in [`Solver::local_contacts`]) once more, restitution 0,
+    /// from the velocities the last solve left: that solve's impulses are kept in
+    /// [`Solver::local_first_impulses`], this one's are in [`Solver::local_impulses`].
+    fn resolve_local_again(&mut self) {
+        self.local_first_impulses.clear();
+        self.local_first_impulses
+            .extend_from_slice(&self.local_impulses);
+        for c in &mut self.local_contacts {
+            c.restitution = 0.0;
+        }
+        resolve_simultaneous(
+            &self.local_inverse_masses,
+            &mut self.local_velocities,
+            &self.local_contacts,
+            &mut self.local_impulses,
+        );
     }
 
     /// Queues the first impact of pair `(i, j)` (with `i < j`) in `[t, dt]`, if any.

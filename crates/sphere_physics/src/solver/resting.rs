@@ -256,19 +256,10 @@ impl Solver {
         );
         self.local_shifts.clear();
         self.local_shifts.extend_from_slice(&self.local_velocities);
-        self.local_first_impulses.clear();
-        self.local_first_impulses
-            .extend_from_slice(&self.local_impulses);
         for (c, &bias) in self.local_contacts.iter_mut().zip(&self.local_biases) {
             c.bias = bias;
-            c.restitution = 0.0;
         }
-        resolve_simultaneous(
-            &self.local_inverse_masses,
-            &mut self.local_velocities,
-            &self.local_contacts,
-            &mut self.local_impulses,
-        );
+        self.resolve_local_again();
         // The largest scale that keeps every body within its budget.
         let mut scale = 1.0f64;
         for (i, &k) in self.local_bodies.iter().enumerate() {

@@ -175,8 +175,12 @@ pub const MAX_GROUP_SWEEPS: u32 = 256;
 /// [`MAX_GROUP_SWEEPS`] sweeps. Then each contact gets
 /// `restitution · λ` more. Momentum is conserved, and without biases kinetic energy is never
 /// gained: with a common restitution `e` it changes by `(e² − 1)/2 · λᵀAλ`, so it is conserved
-/// exactly when `e = 1` (a bias pushes a pair apart on purpose, and may add energy). A single
-/// contact gives the same answer as [`resolve`].
+/// exactly when `e = 1` (a bias pushes a pair apart on purpose, and may add energy). With
+/// restitutions that differ, the restitution impulses could gain energy (a ball striking a line
+/// of two at one instant, restitution 1 where it strikes and 0 between them, would leave them
+/// 11/9 of its energy): where they would, they are all scaled by the one factor that leaves
+/// the group's kinetic energy what it was before (or after the compression, if that is more).
+/// A single contact gives the same answer as [`resolve`].
 ///
 /// `velocities` are updated in place; `impulses` receives each contact's total impulse.
 ///
@@ -201,6 +205,15 @@ pub fn resolve_simultaneous(
         })
         .fold(0.0f64, f64::max);
     let n = contacts.len();
+    // Contacts of several restitutions: their restitution impulses may gain energy (below).
+    let mut restitutions = contacts.iter().filter(|c| !c.string).map(|c| c.restitution);
+    let first = restitutions.next();
+    let mixed = restitutions.any(|e| Some(e) != first);
+    let before = if mixed {
+        kinetic_energy(inverse_masses, velocities)
+    } else {
+        0.0
+    };
     // `impulses` is the exact solve's scratch too: its answer is left in the first `n`.
     if compress_exactly(inverse_masses, velocities, contacts, scale, impulses) {
         impulses.truncate(n);
@@ -227,11 +240,52 @@ pub fn resolve_simultaneous(
         );
         impulses.truncate(n);
     }
+    // The restitution impulses, `restitution · λ` each. With one restitution for all they
+    // never gain energy (see above); with several they may (a contact of restitution 1 beside
+    // one of 0 takes back more than its share), so then they are scaled down together to
+    // where the group's kinetic energy is no more than before (or than after the compression,
+    // when biases pushed on purpose). The energy is quadratic in the scale: its values at 0,
+    // 1/2 and 1 give it.
+    let energy = |velocities: &[DVec3]| kinetic_energy(inverse_masses, velocities);
+    let (compressed, allowed) = if mixed {
+        let compressed = energy(velocities);
+        (compressed, compressed.max(before))
+    } else {
+        (0.0, 0.0)
+    };
+    let restitute = |velocities: &mut [DVec3], scale: f64| {
+        for (c, &impulse) in contacts.iter().zip(impulses.iter()) {
+            if !c.string {
+                apply(velocities, c, scale * c.restitution * impulse);
+            }
+        }
+    };
+    restitute(velocities, 1.0);
+    let mut kept = 1.0;
+    if mixed {
+        let whole = energy(velocities);
+        if whole > allowed * (1.0 + 1e-12) {
+            restitute(velocities, -0.5);
+            let half = energy(velocities);
+            // energy(s) = compressed + β·s + α·s², from its values at 0, 1/2 and 1.
+            let alpha = 2.0 * (whole + compressed - 2.0 * half);
+            let beta = whole - compressed - alpha;
+            let gamma = compressed - allowed;
+            // The largest s in [0, 1] with α·s² + β·s + γ <= 0 (γ <= 0: at s = 0 it holds).
+            let s = if alpha > 0.0 {
+                (-beta + (beta * beta - 4.0 * alpha * gamma).max(0.0).sqrt()) / (2.0 * alpha)
+            } else if beta > 0.0 {
+                -gamma / beta
+            } else {
+                1.0
+            };
+            kept = s.clamp(0.0, 1.0);
+            restitute(velocities, kept - 0.5);
+        }
+    }
     for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
         if !c.string {
-            let extra = c.restitution * *impulse;
-            apply(velocities, c, extra);
-            *impulse += extra;
+            *impulse += kept * c.restitution * *impulse;
         }
     }
     // The restitution impulses may stretch a string: pull it back (restitution 0), one pass per
@@ -256,6 +310,16 @@ pub fn resolve_simultaneous(
             break;
         }
     }
+}
+
+/// The kinetic energy of a group's dynamic bodies (those of inverse mass above 0).
+fn kinetic_energy(inverse_masses: &[f64], velocities: &[DVec3]) -> f64 {
+    velocities
+        .iter()
+        .zip(inverse_masses)
+        .filter(|(_, im)| **im > 0.0)
+        .map(|(v, im)| 0.5 * v.length_squared() / im)
+        .sum()
 }
 
 /// The most contacts [`resolve_simultaneous`] solves exactly, by block principal pivoting;

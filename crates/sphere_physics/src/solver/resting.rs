@@ -193,8 +193,7 @@ impl Solver {
     /// stack's creep: faster than the resting speed, or than half its cap (see
     /// [`Solver::correction`]; `smaller` is the smaller radius). Such a push is solved apart
     /// from the contacts' load, within the bodies' budgets (see [`Solver::push_left`]), by the
-    /// resting solve, by impacts solved together, and by the fallback against fixed spheres
-    /// (between dynamic ones its pushes stay in its solve); the resting solve's and the
+    /// resting solve, by impacts solved together, and by the fallback; the resting solve's and the
     /// fallback's are taken off at the step's end, leaving no speed.
     pub(super) fn deep_push(&self, bias: f64, smaller: f64, ctx: &StepContext<'_>) -> bool {
         bias > self
@@ -291,7 +290,8 @@ impl Solver {
     /// could meet in the rest of the step is solved at once, as resting contacts are, each
     /// allowed to close no further than half the contact band short of touching by the step's
     /// end (an overlapping one to part as a resting contact does): restitution 0, momentum
-    /// kept, no energy gained beyond the overlaps' undoing. The solve goes in rounds, each
+    /// kept, no energy gained (a deep overlap is undone by a push taken off at the step's end,
+    /// see below). The solve goes in rounds, each
     /// adding the pairs the last one's changes bring together (the first also those within
     /// [`FALLBACK_MARGIN`] of that, which spares most later rounds), until a round adds none; after
     /// [`FALLBACK_ROUNDS`] the pairs still added are left unsolved and counted as deferred.
@@ -386,15 +386,17 @@ impl Solver {
                     } else {
                         -self.correction(-gap, band, press, smaller, ctx)
                     };
-                    // A deep overlap's push against a fixed sphere is held back, for the
-                    // solve of the pushes after the rounds (on nearly opposite sides of a
-                    // ball fallen into a gap narrower than it, solved with the load, the
-                    // pushes sent it off at 28 m/s). Between dynamic spheres the pushes move
-                    // both, and stay in the solve: its finishing sweeps undo a long chain's
-                    // overlaps with them.
-                    let fixed = sa.is_fixed() || sb.is_fixed();
-                    let bias = if fixed && self.deep_push(-allowed, smaller, ctx) {
-                        self.fallback_pushes.push((key.0, key.1, -allowed));
+                    // A deep overlap's push is held back, for the solve of the pushes after
+                    // the rounds, which takes it off at the step's end: against a fixed
+                    // sphere, solved with the load, the pushes on nearly opposite sides of a
+                    // ball fallen into a gap narrower than it sent it off at 28 m/s; between
+                    // dynamic spheres, left in the velocities, they flung an overlapping
+                    // crowd apart with no gravity (3 mJ to 1.8 kJ in a step). Held back, it
+                    // undoes the overlap over the rest of the step, not a whole one.
+                    let bias = if self.deep_push(-allowed, smaller, ctx) {
+                        let push =
+                            (-allowed * (ctx.dt / rest)).min(MAX_CORRECTION * smaller / ctx.dt);
+                        self.fallback_pushes.push((key.0, key.1, push));
                         0.0
                     } else {
                         -allowed
@@ -457,17 +459,10 @@ impl Solver {
         // between fixed ones) would otherwise take every sweep, its impulses growing all the
         // while.
         let threshold = self.sweep_threshold();
-        let (mut finishing, mut stalled) = (0, 0);
-        let mut excess = self.fallback_excess(rest, ctx);
-        while finishing < FALLBACK_FINISH_SWEEPS && excess > 0.0 && stalled < 4 {
-            self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS);
-            finishing += FALLBACK_LATER_SWEEPS;
-            let left = self.fallback_excess(rest, ctx);
-            stalled = if left < excess { 0 } else { stalled + 1 };
-            excess = left;
-        }
+        self.finish_sweeps(threshold, rest, ctx);
         // The deep pushes held back above go on top, as the step's resting solve's do (see
-        // `solve_pushes`).
+        // `solve_pushes`), and are finished the same way: undone by the step's end, a long
+        // chain's overlaps would come back deeper every step.
         if !self.fallback_pushes.is_empty() {
             self.fallback_pushes.sort_unstable_by_key(|p| (p.0, p.1));
             self.push_saved.clear();
@@ -479,7 +474,7 @@ impl Solver {
                 self.push_saved.push((push, 0.0, 1.0));
             }
             self.save_push_bodies();
-            self.push_on(threshold, ctx);
+            self.push_on(threshold, Some(rest), ctx);
             for &(k, _) in &self.push_bodies {
                 self.local_index[k as usize] = NOT_LOCAL;
             }
@@ -517,6 +512,21 @@ impl Solver {
         self.candidates = candidates;
         self.clear_touched();
         stats.fell_back = true;
+    }
+
+    /// The fallback's finishing sweeps (see [`Solver::fall_back`]): on while any contact
+    /// would end the `rest` of the step deeper than it is allowed (see `fallback_excess`), up
+    /// to [`FALLBACK_FINISH_SWEEPS`], and until four batches in a row leave that no smaller.
+    fn finish_sweeps(&mut self, threshold: f64, rest: f64, ctx: &StepContext<'_>) {
+        let (mut finishing, mut stalled) = (0, 0);
+        let mut excess = self.fallback_excess(rest, ctx);
+        while finishing < FALLBACK_FINISH_SWEEPS && excess > 0.0 && stalled < 4 {
+            self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS);
+            finishing += FALLBACK_LATER_SWEEPS;
+            let left = self.fallback_excess(rest, ctx);
+            stalled = if left < excess { 0 } else { stalled + 1 };
+            excess = left;
+        }
     }
 
     /// When the resting contacts' sweeps have converged: no impulse changes a relative speed
@@ -767,7 +777,7 @@ impl Solver {
         }
         self.warm_start(ctx);
         self.sweep_resting(threshold, RESTING_SWEEPS);
-        self.push_on(threshold, ctx);
+        self.push_on(threshold, None, ctx);
     }
 
     /// The closing speed that brings guard `c` (see [`Solver::add_guards`]) to half the
@@ -809,8 +819,10 @@ impl Solver {
     /// The second part of [`Solver::solve_pushes`]: the contacts solved without their pushes
     /// (kept in [`Solver::push_saved`]), the pushes on top, scaled down until no body is
     /// pushed faster than what is left of its budget; what they add to each velocity is kept
-    /// in [`Solver::pushes`].
-    fn push_on(&mut self, threshold: f64, ctx: &StepContext<'_>) {
+    /// in [`Solver::pushes`]. For the fallback, `finish` is the rest of the step: each round
+    /// then sweeps on as its finishing sweeps do (see [`Solver::finish_sweeps`]), since a
+    /// long chain passes a push on about one contact a sweep.
+    fn push_on(&mut self, threshold: f64, finish: Option<f64>, ctx: &StepContext<'_>) {
         for (k, velocity) in &mut self.push_bodies {
             *velocity = self.segments[*k as usize].velocity;
         }
@@ -842,6 +854,9 @@ impl Solver {
                 }
             }
             self.sweep_resting(threshold, RESTING_SWEEPS);
+            if let Some(rest) = finish {
+                self.finish_sweeps(threshold, rest, ctx);
+            }
             // Each body's push against what is left of its budget (its cap, at the step's
             // start).
             self.push_ratios.clear();

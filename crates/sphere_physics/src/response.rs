@@ -179,7 +179,8 @@ pub const MAX_GROUP_SWEEPS: u32 = 256;
 /// restitutions that differ, the restitution impulses could gain energy (a ball striking a line
 /// of two at one instant, restitution 1 where it strikes and 0 between them, would leave them
 /// 11/9 of its energy): where they would, they are all scaled by the one factor that leaves
-/// the group's kinetic energy what it was before (or after the compression, if that is more).
+/// the group's kinetic energy what it was before (or after the compression, if that is more),
+/// measured in the frame of its fixed bodies (not judged when fixed bodies in it move apart).
 /// A single contact gives the same answer as [`resolve`].
 ///
 /// `velocities` are updated in place; `impulses` receives each contact's total impulse.
@@ -205,12 +206,27 @@ pub fn resolve_simultaneous(
         })
         .fold(0.0f64, f64::max);
     let n = contacts.len();
-    // Contacts of several restitutions: their restitution impulses may gain energy (below).
+    // Contacts of several restitutions: their restitution impulses may gain energy (below),
+    // measured in the frame of the group's fixed bodies (a moving fixed sphere, kinematic,
+    // gives energy on purpose), unless they move apart (then there is no frame to judge in).
     let mut restitutions = contacts.iter().filter(|c| !c.string).map(|c| c.restitution);
     let first = restitutions.next();
-    let mixed = restitutions.any(|e| Some(e) != first);
-    let before = if mixed {
-        kinetic_energy(inverse_masses, velocities)
+    let mut mixed = restitutions.any(|e| Some(e) != first);
+    let mut frame = None;
+    if mixed {
+        for c in contacts {
+            for k in [c.a, c.b].into_iter().filter(|&k| inverse_masses[k] == 0.0) {
+                match frame {
+                    None => frame = Some(velocities[k]),
+                    Some(v) if v != velocities[k] => mixed = false,
+                    Some(_) => {}
+                }
+            }
+        }
+    }
+    let frame = frame.unwrap_or(DVec3::ZERO);
+    let energy_before = if mixed {
+        kinetic_energy(inverse_masses, velocities, frame)
     } else {
         0.0
     };
@@ -246,10 +262,10 @@ pub fn resolve_simultaneous(
     // where the group's kinetic energy is no more than before (or than after the compression,
     // when biases pushed on purpose). The energy is quadratic in the scale: its values at 0,
     // 1/2 and 1 give it.
-    let energy = |velocities: &[DVec3]| kinetic_energy(inverse_masses, velocities);
+    let energy = |velocities: &[DVec3]| kinetic_energy(inverse_masses, velocities, frame);
     let (compressed, allowed) = if mixed {
         let compressed = energy(velocities);
-        (compressed, compressed.max(before))
+        (compressed, compressed.max(energy_before))
     } else {
         (0.0, 0.0)
     };
@@ -264,18 +280,21 @@ pub fn resolve_simultaneous(
     let mut kept = 1.0;
     if mixed {
         let whole = energy(velocities);
-        if whole > allowed * (1.0 + 1e-12) {
+        // (An energy that overflows is left to the world's check of every drift.)
+        if whole.is_finite() && whole > allowed * (1.0 + 1e-12) {
             restitute(velocities, -0.5);
             let half = energy(velocities);
             // energy(s) = compressed + β·s + α·s², from its values at 0, 1/2 and 1.
             let alpha = 2.0 * (whole + compressed - 2.0 * half);
             let beta = whole - compressed - alpha;
             let gamma = compressed - allowed;
-            // The largest s in [0, 1] with α·s² + β·s + γ <= 0 (γ <= 0: at s = 0 it holds).
-            let s = if alpha > 0.0 {
-                (-beta + (beta * beta - 4.0 * alpha * gamma).max(0.0).sqrt()) / (2.0 * alpha)
-            } else if beta > 0.0 {
-                -gamma / beta
+            // The largest s in [0, 1] with α·s² + β·s + γ <= 0 (γ <= 0: at s = 0 it holds),
+            // in the form without cancellation for β >= 0 (right as α goes to 0, too).
+            let root = (beta * beta - 4.0 * alpha * gamma).max(0.0).sqrt();
+            let s = if beta >= 0.0 && beta + root > 0.0 {
+                -2.0 * gamma / (beta + root)
+            } else if beta < 0.0 && alpha > 0.0 {
+                (-beta + root) / (2.0 * alpha)
             } else {
                 1.0
             };
@@ -312,13 +331,14 @@ pub fn resolve_simultaneous(
     }
 }
 
-/// The kinetic energy of a group's dynamic bodies (those of inverse mass above 0).
-fn kinetic_energy(inverse_masses: &[f64], velocities: &[DVec3]) -> f64 {
+/// The kinetic energy of a group's dynamic bodies (those of inverse mass above 0) in the
+/// frame moving at `frame`.
+fn kinetic_energy(inverse_masses: &[f64], velocities: &[DVec3], frame: DVec3) -> f64 {
     velocities
         .iter()
         .zip(inverse_masses)
         .filter(|(_, im)| **im > 0.0)
-        .map(|(v, im)| 0.5 * v.length_squared() / im)
+        .map(|(v, im)| 0.5 * (*v - frame).length_squared() / im)
         .sum()
 }
 

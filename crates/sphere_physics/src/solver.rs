@@ -487,7 +487,8 @@ const FALLBACK_MARGIN: f64 = 0.1;
 
 /// The most sweeps [`Solver::fall_back`] adds after its rounds while a pair still closes past
 /// its allowance (a long chain: a line of 100 spheres struck at 1 km/s was left 2 cm into
-/// itself by the rounds' sweeps).
+/// itself by the rounds' sweeps), and as many again in each round of its deep pushes (see
+/// `Solver::push_on`).
 const FALLBACK_FINISH_SWEEPS: u32 = 1024;
 
 /// The most Gauss–Seidel sweeps over the resting contacts in one step.

@@ -54,6 +54,31 @@ fn regression_a_strike_on_a_line_of_two_with_mixed_restitutions_gains_no_energy(
     assert!(energy(&inverse, &velocities) <= 0.5 * (1.0 + 1e-12));
 }
 
+#[test]
+fn a_moving_fixed_body_is_judged_in_its_own_frame() {
+    // A fixed paddle at 1 m/s strikes a ball (restitution 1) touching another (restitution 0
+    // between the two), both at rest. In the paddle's frame both come at it at 1 m/s with
+    // 1 J: compression stops both (impulses 2 and 1), and the paddle's whole restitution
+    // impulse would send the first back at 2 m/s with 2 J. Scaled to keep the 1 J, by
+    // s = 1/√2: the first leaves at √2 m/s in the paddle's frame, the second stays with the
+    // paddle. (Judged in the world's frame, the paddle's bounce would be taken away whole:
+    // the energy it gives is not the group's to refuse.)
+    let inverse = [0.0, 1.0, 1.0];
+    let contacts = [
+        GroupContact::new(0, 1, DVec3::X, 1.0),
+        GroupContact::new(1, 2, DVec3::X, 0.0),
+    ];
+    let mut velocities = [DVec3::X, DVec3::ZERO, DVec3::ZERO];
+    let mut impulses = Vec::new();
+    resolve_simultaneous(&inverse, &mut velocities, &contacts, &mut impulses);
+    let expected = [1.0, 1.0 + 2f64.sqrt(), 1.0];
+    for (v, x) in velocities.iter().zip(expected) {
+        assert!((*v - DVec3::X * x).length() <= 1e-12, "{velocities:?}");
+    }
+    let relative: Vec<DVec3> = velocities.iter().map(|v| *v - DVec3::X).collect();
+    assert!(energy(&inverse, &relative) <= 1.0 + 1e-12);
+}
+
 mod properties {
     use super::energy;
     use proptest::prelude::*;

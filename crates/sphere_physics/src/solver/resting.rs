@@ -290,15 +290,16 @@ impl Solver {
     /// could meet in the rest of the step is solved at once, as resting contacts are, each
     /// allowed to close no further than half the contact band short of touching by the step's
     /// end (an overlapping one to part as a resting contact does): restitution 0, momentum
-    /// kept, no energy gained (a deep overlap is undone by a push taken off at the step's end,
-    /// see below). The solve goes in rounds, each
+    /// kept, no energy gained beyond a stack's creep (a deep overlap is undone by a push taken
+    /// off at the step's end, see below). The solve goes in rounds, each
     /// adding the pairs the last one's changes bring together (the first also those within
     /// [`FALLBACK_MARGIN`] of that, which spares most later rounds), until a round adds none; after
     /// [`FALLBACK_ROUNDS`] the pairs still added are left unsolved and counted as deferred.
     /// Each round sweeps until the impulses settle as the step's resting solve does (the first
     /// at most [`RESTING_SWEEPS`] times, later ones [`FALLBACK_LATER_SWEEPS`]), and after the
     /// last round up to [`FALLBACK_FINISH_SWEEPS`] more while a pair still closes well past its
-    /// allowance (a long chain, see `fallback_excess`). The impacts
+    /// allowance (a long chain, see `fallback_excess`); the deep pushes held back then go on
+    /// top, each of their rounds finished the same way (see [`Solver::push_on`]). The impacts
     /// left in the queue are then stale, and the step drifts to its end. Bodies on strings are
     /// left to the budget's deferral as before (the fallback is skipped when any body hangs on
     /// a string).

@@ -5,6 +5,8 @@
 //! ball striking a line of two at one instant, restitution 1 where it strikes and 0 between
 //! the two, left them with 0.611 J of the 0.5 J it brought. Now the restitution impulses are
 //! scaled down together, where they would gain energy, to where the group has what it had.
+//! The property test over random groups of mixed restitutions is in `simultaneous.rs`
+//! (`groups_with_mixed_restitutions_never_gain_energy`; it fails before the fix too).
 
 use sphere_physics::glam::DVec3;
 use sphere_physics::{GroupContact, resolve_simultaneous};
@@ -77,72 +79,4 @@ fn a_moving_fixed_body_is_judged_in_its_own_frame() {
     }
     let relative: Vec<DVec3> = velocities.iter().map(|v| *v - DVec3::X).collect();
     assert!(energy(&inverse, &relative) <= 1.0 + 1e-12);
-}
-
-mod properties {
-    use super::energy;
-    use proptest::prelude::*;
-    use sphere_physics::glam::DVec3;
-    use sphere_physics::{GroupContact, resolve_simultaneous};
-
-    fn vec3() -> impl Strategy<Value = DVec3> {
-        (-5.0..5.0f64, -5.0..5.0f64, -5.0..5.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
-    }
-
-    /// `cases` cases from a fixed seed (set `PROPTEST_RNG_SEED` to explore others).
-    fn config(cases: u32) -> ProptestConfig {
-        let mut config = ProptestConfig::with_cases(cases);
-        if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
-            config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x0E1A_571C);
-        }
-        config
-    }
-
-    proptest! {
-        #![proptest_config(config(512))]
-        /// Any group of one to ten contacts among 5 bodies (one possibly fixed at rest), each
-        /// contact with its own restitution (0, 1 or between): momentum moves only through the
-        /// fixed body, the impulses push, and the kinetic energy is never gained. (With eleven
-        /// or more contacts the group is swept; the world's fuzz covers those.)
-        #[test]
-        fn groups_with_mixed_restitutions_never_gain_energy(
-            masses in prop::collection::vec(0.1..10.0f64, 5),
-            fixed in any::<bool>(),
-            mut velocities in prop::collection::vec(vec3(), 5),
-            positions in prop::collection::vec(vec3(), 5),
-            pairs in prop::sample::subsequence(
-                (0..5).flat_map(|a| (a + 1..5).map(move |b| (a, b))).collect::<Vec<_>>(),
-                1..=10,
-            ),
-            restitutions in prop::collection::vec(
-                prop_oneof![Just(1.0), Just(0.0), 0.0..=1.0f64], 10),
-        ) {
-            let mut inverse: Vec<f64> = masses.iter().map(|m| 1.0 / m).collect();
-            if fixed {
-                inverse[4] = 0.0;
-                velocities[4] = DVec3::ZERO;
-            }
-            let contacts: Vec<GroupContact> = pairs
-                .iter()
-                .zip(&restitutions)
-                .map(|(&(a, b), &e)| (a, b, positions[b] - positions[a], e))
-                .filter(|(_, _, d, _)| d.length() > 1e-3)
-                .map(|(a, b, d, e)| GroupContact::new(a, b, d.normalize(), e))
-                .collect();
-            prop_assume!(!contacts.is_empty());
-            let mut v = velocities.clone();
-            let mut impulses = Vec::new();
-            resolve_simultaneous(&inverse, &mut v, &contacts, &mut impulses);
-            prop_assert!(impulses.iter().all(|j| *j >= 0.0 && j.is_finite()), "{:?}", impulses);
-            let scale = 1.0 + energy(&inverse, &velocities);
-            let momentum = |v: &[DVec3]| -> DVec3 {
-                v.iter().zip(&inverse).filter(|(_, im)| **im > 0.0).map(|(v, im)| *v / *im).sum()
-            };
-            if !fixed {
-                prop_assert!((momentum(&v) - momentum(&velocities)).length() <= 1e-9 * scale);
-            }
-            let gained = energy(&inverse, &v) - energy(&inverse, &velocities);
-            prop_assert!(gained <= 1e-9 * scale, "energy gained {}", gained);
-        }
-    }
 }

@@ -193,8 +193,8 @@ impl Solver {
     /// stack's creep: faster than the resting speed, or than half its cap (see
     /// [`Solver::correction`]; `smaller` is the smaller radius). Such a push is solved apart
     /// from the contacts' load, within the bodies' budgets (see [`Solver::push_left`]), by the
-    /// resting solve, by impacts solved together, and by the fallback; the resting solve's and the
-    /// fallback's are taken off at the step's end, leaving no speed.
+    /// resting solve, by impacts solved together, and by the fallback; the resting solve's
+    /// and the fallback's are taken off at the step's end, leaving no speed.
     pub(super) fn deep_push(&self, bias: f64, smaller: f64, ctx: &StepContext<'_>) -> bool {
         bias > self
             .resting_speed

@@ -203,6 +203,42 @@ mod properties {
         config
     }
 
+    /// The kinetic energy of the bodies of inverse mass above 0.
+    fn energy(inverse: &[f64], v: &[DVec3]) -> f64 {
+        v.iter()
+            .zip(inverse)
+            .filter(|(_, im)| **im > 0.0)
+            .map(|(v, im)| 0.5 * v.length_squared() / im)
+            .sum()
+    }
+
+    /// The inverse masses of `masses` (the last body fixed and at rest if `fixed`: a moving one
+    /// may do work on the others) and one contact per pair of `pairs` whose centres are apart,
+    /// its normal along the line of centres as in a real group, pair `n` with restitution
+    /// `restitution(n)`.
+    fn group(
+        masses: &[f64],
+        fixed: bool,
+        velocities: &mut [DVec3],
+        positions: &[DVec3],
+        pairs: &[(usize, usize)],
+        restitution: impl Fn(usize) -> f64,
+    ) -> (Vec<f64>, Vec<GroupContact>) {
+        let mut inverse: Vec<f64> = masses.iter().map(|m| 1.0 / m).collect();
+        if fixed {
+            inverse[4] = 0.0;
+            velocities[4] = DVec3::ZERO;
+        }
+        let contacts = pairs
+            .iter()
+            .enumerate()
+            .map(|(n, &(a, b))| (a, b, positions[b] - positions[a], restitution(n)))
+            .filter(|(_, _, d, _)| d.length() > 1e-3)
+            .map(|(a, b, d, e)| GroupContact::new(a, b, d.normalize(), e))
+            .collect();
+        (inverse, contacts)
+    }
+
     proptest! {
         #![proptest_config(config(256))]
         /// Any group of one to eight contacts among 5 bodies (one possibly fixed), one
@@ -226,29 +262,15 @@ mod properties {
             ),
             restitution in prop_oneof![Just(1.0), Just(0.0), 0.0..=1.0f64],
         ) {
-            let mut inverse: Vec<f64> = masses.iter().map(|m| 1.0 / m).collect();
-            if fixed {
-                // A fixed body at rest (a moving one may do work on the others).
-                inverse[4] = 0.0;
-                velocities[4] = DVec3::ZERO;
-            }
-            // Each pair once, its normal along the line of centres, as in a real group.
-            let contacts: Vec<GroupContact> = pairs
-                .iter()
-                .map(|&(a, b)| (a, b, positions[b] - positions[a]))
-                .filter(|(_, _, d)| d.length() > 1e-3)
-                .map(|(a, b, d)| GroupContact::new(a, b, d.normalize(), restitution))
-                .collect();
+            let (inverse, contacts) =
+                group(&masses, fixed, &mut velocities, &positions, &pairs, |_| restitution);
             prop_assume!(!contacts.is_empty());
             let mut v = velocities.clone();
             let mut impulses = Vec::new();
             resolve_simultaneous(&inverse, &mut v, &contacts, &mut impulses);
             prop_assert_eq!(impulses.len(), contacts.len());
             prop_assert!(impulses.iter().all(|j| *j >= 0.0 && j.is_finite()), "{:?}", impulses);
-            let energy = |v: &[DVec3]| -> f64 {
-                v.iter().zip(&inverse).filter(|(_, im)| **im > 0.0).map(|(v, im)| 0.5 * v.length_squared() / im).sum()
-            };
-            let scale = 1.0 + energy(&velocities);
+            let scale = 1.0 + energy(&inverse, &velocities);
             // Each dynamic body's change of momentum is the sum of its contacts' impulses.
             let mut pushed = [DVec3::ZERO; 5];
             for (c, &j) in contacts.iter().zip(&impulses) {
@@ -268,7 +290,7 @@ mod properties {
                 prop_assert!(v[4] == DVec3::ZERO);
             }
             let expected = (restitution - 1.0) / (2.0 * (1.0 + restitution)) * work;
-            let gained = energy(&v) - energy(&velocities);
+            let gained = energy(&inverse, &v) - energy(&inverse, &velocities);
             prop_assert!(
                 (gained - expected).abs() <= 1e-9 * scale,
                 "energy changed by {} for e = {}, expected {}", gained, restitution, expected
@@ -367,15 +389,6 @@ mod properties {
         }
     }
 
-    /// The kinetic energy of the bodies of inverse mass above 0.
-    fn energy(inverse: &[f64], v: &[DVec3]) -> f64 {
-        v.iter()
-            .zip(inverse)
-            .filter(|(_, im)| **im > 0.0)
-            .map(|(v, im)| 0.5 * v.length_squared() / im)
-            .sum()
-    }
-
     proptest! {
         #![proptest_config(config(512))]
         /// Any group of one to ten contacts among 5 bodies (one possibly fixed at rest), each
@@ -397,18 +410,8 @@ mod properties {
             restitutions in prop::collection::vec(
                 prop_oneof![Just(1.0), Just(0.0), 0.0..=1.0f64], 10),
         ) {
-            let mut inverse: Vec<f64> = masses.iter().map(|m| 1.0 / m).collect();
-            if fixed {
-                inverse[4] = 0.0;
-                velocities[4] = DVec3::ZERO;
-            }
-            let contacts: Vec<GroupContact> = pairs
-                .iter()
-                .zip(&restitutions)
-                .map(|(&(a, b), &e)| (a, b, positions[b] - positions[a], e))
-                .filter(|(_, _, d, _)| d.length() > 1e-3)
-                .map(|(a, b, d, e)| GroupContact::new(a, b, d.normalize(), e))
-                .collect();
+            let (inverse, contacts) =
+                group(&masses, fixed, &mut velocities, &positions, &pairs, |n| restitutions[n]);
             prop_assume!(!contacts.is_empty());
             let mut v = velocities.clone();
             let mut impulses = Vec::new();

@@ -39,6 +39,7 @@ use crate::{Body, Collision, Integrator, Settings, StepProfile, StepStats, Tethe
 
 mod glance;
 mod resting;
+mod separate;
 
 use glance::{
     Apart, FirstPass, Glance, Relative, Side, cannot_touch_by, first_pass_kept, kept_by_glances,
@@ -342,6 +343,14 @@ pub(crate) struct Solver {
     spent: Vec<f64>,
     /// One bit per segment that has spent some of its push budget this step.
     spent_bits: Vec<u64>,
+    /// Scratch for [`Solver::separate`]: the bodies it may move (one bit per segment, and
+    /// their list), each one's position as moved so far and its move (valid where its bit is
+    /// set), and the pairs within reach of them.
+    separate_bits: Vec<u64>,
+    separating: Vec<u32>,
+    separate_at: Vec<DVec3>,
+    separate_moves: Vec<DVec3>,
+    separate_pairs: Vec<(u32, u32)>,
 }
 
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
@@ -979,17 +988,31 @@ impl Solver {
         // were tested then, with the drifts they ended on, which ended them overlapping (give
         // or take rounding, allowed for generously): the tested pairs are enough to find the
         // largest overlap. Read in solver order, where neighbours in space are neighbours in memory.
-        stats.max_overlap = self
-            .tested
+        let mut max_overlap = self.deepest_tested(dt);
+        // With nothing accelerating there is no resting solve to undo an overlap: the
+        // separation moves such pairs apart instead (see `Solver::separate`).
+        if self.resting_scale == 0.0 && max_overlap > 0.0 {
+            let moved = self.separate(bodies, ctx);
+            if moved > 0 {
+                stats.separated = stats.separated.saturating_add(moved);
+                max_overlap = self.deepest_tested(dt);
+            }
+        }
+        stats.max_overlap = max_overlap;
+        laps.lap(&mut self.profile.overlap);
+        Ok(())
+    }
+
+    /// The deepest overlap at the step's end (`dt`) among the tested pairs, 0 if none.
+    fn deepest_tested(&self, dt: f64) -> f64 {
+        self.tested
             .iter()
             .map(|&(i, j)| {
                 let (i, j) = (i as usize, j as usize);
                 let reach = self.segments[i].radius() + self.segments[j].radius();
                 reach - (self.final_position(j, dt) - self.final_position(i, dt)).length()
             })
-            .fold(0.0, f64::max);
-        laps.lap(&mut self.profile.overlap);
-        Ok(())
+            .fold(0.0, f64::max)
     }
 
     /// Tests every pair involving a body in `touched` (all dynamic, all just changed) once,

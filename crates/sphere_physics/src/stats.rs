@@ -51,6 +51,10 @@ pub struct StepStats {
     /// Largest overlap (sum of radii minus centre distance) between any two bodies, at least one
     /// of them dynamic, at the end of the step; 0 if none overlap.
     pub max_overlap: f64,
+    /// Spheres moved apart by their positions at the end of the step, from overlaps left
+    /// with nothing accelerating (no gravity, no applied force): see
+    /// [`World::step`](crate::World::step). Summed over the step's substeps.
+    pub separated: u32,
 }
 
 impl StepStats {

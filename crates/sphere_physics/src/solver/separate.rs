@@ -1,0 +1,222 @@
+//! Overlaps with nothing accelerating: spheres placed overlapping in a world with no gravity
+//! and no applied force are moved apart, a little each step, by their positions alone.
+//!
+//! Under any acceleration the resting solve undoes an overlap by a push that moves its bodies
+//! within the step and is taken off at its end. With none there is no resting solve (nothing
+//! presses a contact, so nothing is a resting contact), and two spheres left overlapping at
+//! rest, or parting slower than they overlap, stayed so for ever. Here such pairs are moved
+//! apart at the step's end, each body along the pair's normal in proportion to its inverse
+//! mass: the centre of mass stays where it is, and no velocity changes, so momentum and
+//! kinetic energy are kept exactly. Part of [`Solver`]: these are its methods.
+
+use glam::DVec3;
+
+use super::{MAX_CORRECTION, Solver, StepContext, bit, contact_band};
+use crate::Body;
+use crate::broad_phase::Aabb;
+
+/// How many times the separation goes over its pairs at most in a step (Gauss–Seidel, each
+/// pair moved apart in turn with what the pairs before it did): a lone pair needs one, a
+/// crowd's pairs undo each other's moves in part.
+const SEPARATION_SWEEPS: u32 = 8;
+
+impl Solver {
+    /// Moves apart the pairs that end the step overlapping by more than their contact band,
+    /// when nothing accelerates (call after the write-back, with the bodies' final positions).
+    /// Each pair is moved to touching, its bodies in proportion to their inverse masses; a body
+    /// moves at most [`MAX_CORRECTION`] of its radius in a step, as a push under gravity does,
+    /// so a sphere placed deep inside others comes out over a few steps and one caught between
+    /// fixed spheres cannot be flung. Fixed spheres and spheres on strings are not moved (a
+    /// string's length binds its sphere's position). Two spheres at the same point part along
+    /// x. Returns how many bodies moved.
+    ///
+    /// The pairs come from those the step tested (a superset of those that can end it
+    /// overlapping) and from the broad phase, asked for every pair within reach of a body that
+    /// moves, so a move into a sphere not overlapped before is undone in the same step, and
+    /// [`crate::StepStats::max_overlap`] sees every pair the moves bring together.
+    pub(super) fn separate(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>) -> u32 {
+        let dt = ctx.dt;
+        let n = self.segments.len();
+        self.separate_bits.clear();
+        self.separate_bits.resize(n.div_ceil(64), 0);
+        self.separating.clear();
+        self.separate_pairs.clear();
+        if self.separate_at.len() < n {
+            self.separate_at.resize(n, DVec3::ZERO);
+            self.separate_moves.resize(n, DVec3::ZERO);
+        }
+        for t in 0..self.tested.len() {
+            let (i, j) = self.tested[t];
+            let (i, j) = (i as usize, j as usize);
+            let (a, b) = (&self.segments[i], &self.segments[j]);
+            let reach = a.radius() + b.radius();
+            let distance = (self.final_position(j, dt) - self.final_position(i, dt)).length();
+            if reach - distance > contact_band(a, b, ctx.settings) {
+                self.may_separate(i, dt);
+                self.may_separate(j, dt);
+            }
+        }
+        if self.separating.is_empty() {
+            return 0;
+        }
+        // Every pair a move can bring into touch. A moving body's box is its sphere grown by
+        // its cap; every other body's still holds its sphere at the step's end. A dynamic body
+        // within reach of a moving one moves too (so the moves keep the centre of mass), and
+        // its own neighbours are sought in turn.
+        let mut found = std::mem::take(&mut self.candidates);
+        let mut s = 0;
+        while s < self.separating.len() {
+            let k = self.separating[s] as usize;
+            s += 1;
+            found.clear();
+            self.broad.collect_overlapping(k, &self.boxes, &mut found);
+            for &m in &found {
+                let m = m as usize;
+                if m == k || !self.boxes[k].overlaps(&self.boxes[m]) {
+                    continue;
+                }
+                let reach = self.segments[k].radius()
+                    + self.segments[m].radius()
+                    + self.separation_cap(k)
+                    + self.separation_cap(m);
+                if (self.final_position(m, dt) - self.separate_at[k]).length() >= reach {
+                    continue;
+                }
+                self.may_separate(m, dt);
+                self.separate_pairs.push((k.min(m) as u32, k.max(m) as u32));
+            }
+        }
+        self.candidates = found;
+        // Each pair once (two moving bodies find each other), in an order that does not
+        // depend on the broad phase's.
+        self.separate_pairs.sort_unstable();
+        self.separate_pairs.dedup();
+        let at = |solver: &Self, k: usize| {
+            if bit(&solver.separate_bits, k) {
+                solver.separate_at[k]
+            } else {
+                solver.final_position(k, dt)
+            }
+        };
+        let weight = |solver: &Self, k: usize| {
+            if bit(&solver.separate_bits, k) {
+                solver.extra(k).inverse_mass
+            } else {
+                0.0
+            }
+        };
+        for _ in 0..SEPARATION_SWEEPS {
+            let mut moved = false;
+            for p in 0..self.separate_pairs.len() {
+                let (i, j) = self.separate_pairs[p];
+                let (i, j) = (i as usize, j as usize);
+                let (wi, wj) = (weight(self, i), weight(self, j));
+                let (a, b) = (&self.segments[i], &self.segments[j]);
+                let reach = a.radius() + b.radius();
+                let band = contact_band(a, b, ctx.settings);
+                let (pi, pj) = (at(self, i), at(self, j));
+                let apart = pj - pi;
+                let distance = apart.length();
+                let overlap = reach - distance;
+                if overlap <= band || wi + wj == 0.0 {
+                    continue;
+                }
+                let normal = if distance > 0.0 {
+                    apart / distance
+                } else {
+                    DVec3::X
+                };
+                let (move_i, move_j) = (
+                    -normal * (overlap * wi / (wi + wj)),
+                    normal * (overlap * wj / (wi + wj)),
+                );
+                // One scale for both, so the pair's centre of mass stays, and each body's move
+                // in the step stays within its cap (a move back towards where it was is free).
+                let mut scale = 1.0f64;
+                for (k, m) in [(i, move_i), (j, move_j)] {
+                    if bit(&self.separate_bits, k) {
+                        let cap = self.separation_cap(k);
+                        scale = scale.min(within_cap(self.separate_moves[k], m, cap));
+                    }
+                }
+                if scale <= 0.0 {
+                    continue;
+                }
+                for (k, m) in [(i, move_i), (j, move_j)] {
+                    if bit(&self.separate_bits, k) {
+                        self.separate_at[k] += m * scale;
+                        self.separate_moves[k] += m * scale;
+                    }
+                }
+                moved = true;
+            }
+            if !moved {
+                break;
+            }
+        }
+        let mut count = 0;
+        for s in 0..self.separating.len() {
+            let k = self.separating[s] as usize;
+            let shift = self.separate_moves[k];
+            if shift == DVec3::ZERO {
+                continue;
+            }
+            count += 1;
+            bodies[self.order[k] as usize].desc.position = self.separate_at[k];
+            self.segments[k].position += shift;
+        }
+        // The step's deepest overlap is sought among the tested pairs: these join them.
+        self.tested.extend_from_slice(&self.separate_pairs);
+        count
+    }
+}
+
+impl Solver {
+    /// How far segment `k` may be moved apart from others in a step: [`MAX_CORRECTION`] of
+    /// its radius, or 0 for a fixed sphere or one on a string.
+    fn separation_cap(&self, k: usize) -> f64 {
+        if self.segments[k].is_fixed() || self.string_of(k).is_some() {
+            0.0
+        } else {
+            MAX_CORRECTION * self.segments[k].radius()
+        }
+    }
+
+    /// Lets segment `k` move in this step's separation, unless it may not (fixed, or on a
+    /// string) or already does: its box is grown by its cap in the broad phase, and its
+    /// neighbours are to be sought.
+    fn may_separate(&mut self, k: usize, dt: f64) {
+        if bit(&self.separate_bits, k) || self.separation_cap(k) == 0.0 {
+            return;
+        }
+        self.separate_bits[k / 64] |= 1 << (k % 64);
+        self.separating.push(k as u32);
+        let at = self.final_position(k, dt);
+        self.separate_at[k] = at;
+        self.separate_moves[k] = DVec3::ZERO;
+        let grow = DVec3::splat(self.segments[k].radius() + self.separation_cap(k));
+        self.boxes[k] = Aabb {
+            lo: at - grow,
+            hi: at + grow,
+        };
+        self.broad.update(k, &self.boxes[k]);
+    }
+}
+
+/// The largest `s` in `[0, 1]` for which `so_far + s * step` is no longer than `cap` (`so_far`
+/// being no longer than it): 0 if `step` points out of the ball where `so_far` is on its edge.
+fn within_cap(so_far: DVec3, step: DVec3, cap: f64) -> f64 {
+    let (mm, am) = (step.length_squared(), so_far.dot(step));
+    if mm == 0.0 {
+        return 1.0;
+    }
+    let inside = (cap * cap - so_far.length_squared()).max(0.0);
+    // The positive root of mm s² + 2 am s - inside, in the form without cancellation.
+    let root = (am * am + mm * inside).sqrt();
+    let s = if am <= 0.0 {
+        (root - am) / mm
+    } else {
+        inside / (root + am)
+    };
+    s.clamp(0.0, 1.0)
+}

@@ -1,0 +1,205 @@
+//! Regression (2026-12-03): with nothing accelerating (no gravity, no applied force) there is
+//! no resting solve, and spheres placed overlapping stayed overlapping: a 4 x 4 x 4 crowd of
+//! radius 0.5 placed 0.5 m apart at rest was still a radius deep after 10 s, and a moving
+//! crowd that lost its speed in its first collisions kept its overlaps too (5 x 5 x 5, 0.6 m
+//! apart at up to 1 m/s, restitution 0: 0.37 m deep after 2 s, 0.14 m after 10 s). Now such overlaps are undone at
+//! each step's end by moving the pair's spheres apart (each by its inverse mass's share, at
+//! most a tenth of its radius a step), without touching a velocity: momentum and kinetic
+//! energy are kept exactly, and so is the centre of mass.
+
+use sphere_physics::glam::DVec3;
+use sphere_physics::{Settings, SphereDesc, World};
+
+const DT: f64 = 1.0 / 60.0;
+
+/// A cube of `side`³ spheres of radius 0.5 whose centres are `spacing` apart, moving at up to
+/// `speed` in random directions (a fixed sequence), with `restitution`, and no gravity.
+fn crowd(side: usize, spacing: f64, speed: f64, restitution: f64) -> World {
+    let mut world = World::new(Settings::default());
+    let mut state = 11u64;
+    let mut unit = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for i in 0..side {
+        for j in 0..side {
+            for k in 0..side {
+                let at = DVec3::new(i as f64, j as f64, k as f64) * spacing;
+                let velocity = DVec3::new(unit(), unit(), unit()) * speed;
+                world
+                    .add_sphere(
+                        SphereDesc::new(0.5)
+                            .at(at)
+                            .moving(velocity)
+                            .with_restitution(restitution),
+                    )
+                    .unwrap();
+            }
+        }
+    }
+    world
+}
+
+/// The mass-weighted mean position of the dynamic spheres.
+fn centre_of_mass(world: &World) -> DVec3 {
+    let (mut sum, mut mass) = (DVec3::ZERO, 0.0);
+    for body in world.bodies().iter().filter(|b| !b.is_fixed()) {
+        sum += body.mass() * body.position();
+        mass += body.mass();
+    }
+    sum / mass
+}
+
+/// The deepest overlap of any two spheres, by every pair.
+fn deepest(world: &World) -> f64 {
+    let bodies = world.bodies();
+    let mut worst = 0.0f64;
+    for (i, a) in bodies.iter().enumerate() {
+        for b in &bodies[i + 1..] {
+            let overlap = a.radius() + b.radius() - (b.position() - a.position()).length();
+            worst = worst.max(overlap);
+        }
+    }
+    worst
+}
+
+#[test]
+fn regression_an_overlapping_crowd_at_rest_with_no_gravity_comes_apart() {
+    let mut world = crowd(4, 0.5, 0.0, 0.5);
+    let centre = centre_of_mass(&world);
+    // Before: 0.5 m deep (a radius) at every step for 10 s.
+    let mut apart_at = None;
+    for step in 0..120 {
+        let stats = *world.step(DT).unwrap();
+        assert!(
+            world.bodies().iter().all(|b| b.velocity() == DVec3::ZERO),
+            "step {step}: a sphere was given a speed"
+        );
+        assert!(
+            (centre_of_mass(&world) - centre).length() <= 1e-12,
+            "step {step}: the centre of mass moved by {}",
+            (centre_of_mass(&world) - centre).length()
+        );
+        assert!(
+            (stats.max_overlap - deepest(&world)).abs() <= 1e-12,
+            "step {step}: reported {} against {}",
+            stats.max_overlap,
+            deepest(&world)
+        );
+        // Within the contact band (a millionth of the diameter): touching.
+        if apart_at.is_none() && deepest(&world) <= 1e-6 {
+            apart_at = Some(step);
+        }
+    }
+    // Measured: every pair apart or touching after 33 steps.
+    let apart_at = apart_at.expect("the crowd comes apart within 2 s");
+    assert!(apart_at <= 40, "apart only after {apart_at} steps");
+    assert_eq!(world.stats().separated, 0, "nothing left to move");
+}
+
+#[test]
+fn regression_a_crowd_stopped_by_its_collisions_with_no_gravity_comes_apart() {
+    let mut world = crowd(5, 0.6, 1.0, 0.0);
+    let momentum = world.momentum();
+    let mut energy = world.kinetic_energy();
+    for step in 0..120 {
+        world.step(DT).unwrap();
+        let now = world.kinetic_energy();
+        assert!(
+            now <= energy * (1.0 + 1e-9),
+            "step {step}: kinetic energy {energy} -> {now}"
+        );
+        assert!(
+            (world.momentum() - momentum).length() <= 1e-9,
+            "step {step}: momentum moved"
+        );
+        energy = now;
+    }
+    // Before: 0.37 m deep.
+    assert!(
+        deepest(&world) <= 1e-6,
+        "still {} deep after 2 s",
+        deepest(&world)
+    );
+}
+
+/// Two spheres of radius 1 a radius into each other at rest, the second three times as heavy:
+/// each step the light one moves a tenth of its radius (its cap) and the heavy one a third of
+/// that (the centre of mass stays), until they touch.
+#[test]
+fn two_spheres_part_by_their_inverse_masses_a_tenth_of_a_radius_a_step() {
+    let mut world = World::new(Settings::default());
+    let light = world
+        .add_sphere(SphereDesc::new(1.0).at(DVec3::ZERO).with_density(1.0))
+        .unwrap();
+    let heavy = world
+        .add_sphere(SphereDesc::new(1.0).at(DVec3::X).with_density(3.0))
+        .unwrap();
+    let x = |world: &World, id| world.body(id).unwrap().position().x;
+    for step in 1..=7 {
+        let stats = *world.step(DT).unwrap();
+        assert_eq!(stats.separated, 2, "step {step}");
+        let k = f64::from(step);
+        assert!((x(&world, light) + 0.1 * k).abs() < 1e-12, "step {step}");
+        assert!((x(&world, heavy) - (1.0 + 0.1 * k / 3.0)).abs() < 1e-12);
+    }
+    // 1/15 m of overlap is left for the eighth step, shared 3 : 1.
+    let stats = *world.step(DT).unwrap();
+    assert_eq!(stats.separated, 2);
+    assert!((x(&world, light) + 0.75).abs() < 1e-12);
+    assert!((x(&world, heavy) - 1.25).abs() < 1e-12);
+    assert!(stats.max_overlap.abs() < 1e-12);
+    let stats = *world.step(DT).unwrap();
+    assert_eq!(stats.separated, 0, "touching: nothing to move");
+    for id in [light, heavy] {
+        let body = world.body(id).unwrap();
+        assert_eq!(body.velocity(), DVec3::ZERO);
+        assert_eq!(body.position().y, 0.0);
+        assert_eq!(body.position().z, 0.0);
+    }
+}
+
+/// A small sphere placed deep inside a fixed one comes out along the line from its centre, a
+/// tenth of its radius a step; the fixed one stays.
+#[test]
+fn a_sphere_inside_a_fixed_one_comes_out_along_its_normal() {
+    let mut world = World::new(Settings::default());
+    let fixed = world
+        .add_sphere(SphereDesc::new(1.0).at(DVec3::ZERO).fixed())
+        .unwrap();
+    let direction = DVec3::new(1.0, 2.0, -2.0) / 3.0;
+    let ball = world
+        .add_sphere(SphereDesc::new(0.1).at(direction * 0.5))
+        .unwrap();
+    for step in 1..=60 {
+        world.step(DT).unwrap();
+        let at = world.body(ball).unwrap().position();
+        let expected = (0.5 + 0.01 * f64::from(step)).min(1.1);
+        assert!(
+            (at - direction * expected).length() < 1e-12,
+            "step {step}: {at} against {}",
+            direction * expected
+        );
+    }
+    assert_eq!(world.body(fixed).unwrap().position(), DVec3::ZERO);
+    assert!(world.stats().max_overlap < 1e-12);
+    assert_eq!(world.body(ball).unwrap().velocity(), DVec3::ZERO);
+}
+
+/// Under gravity the resting solve undoes overlaps (by pushes within the step): the separation
+/// is not used, even for spheres that press on nothing.
+#[test]
+fn with_gravity_the_separation_is_not_used() {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.0, 10.0, 0.0)))
+        .unwrap();
+    world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.5, 10.0, 0.0)))
+        .unwrap();
+    for _ in 0..10 {
+        assert_eq!(world.step(DT).unwrap().separated, 0);
+    }
+}

@@ -164,6 +164,9 @@ pub struct RunStats {
     /// Steps whose collision budget ran out, their rest solved at once
     /// (`StepStats::fell_back`).
     pub steps_fell_back: u64,
+    /// Spheres moved apart by their positions from overlaps left with nothing accelerating,
+    /// summed over the steps (`StepStats::separated`).
+    pub separated: u64,
     /// Time-of-impact tests.
     pub toi_tests: u64,
     /// Bisection iterations (0 for exact).
@@ -299,7 +302,7 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
     let initial = Snapshot::of(&world);
     let planned = plan.total();
     let mut totals = (0u64, 0u64, 0u64, 0u64, 0u64);
-    let mut fell_back = 0u64;
+    let (mut fell_back, mut separated) = (0u64, 0u64);
     let mut max_overlap_seen = world.max_overlap();
 
     let mut stepping = std::time::Duration::ZERO;
@@ -317,6 +320,7 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
         totals.1 += u64::from(stats.resting_contacts);
         totals.2 += u64::from(stats.collisions_deferred);
         fell_back += u64::from(stats.fell_back);
+        separated += u64::from(stats.separated);
         totals.3 += stats.toi_tests;
         totals.4 += stats.toi_iterations;
         max_overlap_seen = max_overlap_seen.max(stats.max_overlap);
@@ -357,6 +361,7 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
             resting_contacts: totals.1,
             collisions_deferred: totals.2,
             steps_fell_back: fell_back,
+            separated,
             toi_tests: totals.3,
             toi_iterations: totals.4,
             kinetic_energy: end.kinetic_energy,

@@ -127,6 +127,46 @@ fn two_body_collision_matches_the_analytic_answer() {
     assert!(stats["wall_seconds"].as_f64().is_some_and(f64::is_finite));
 }
 
+/// Two spheres placed a radius into each other with no gravity part by their positions, the
+/// light one a tenth of its radius a step and the three-times-heavier one a third of that,
+/// until they touch at the eighth step; the report counts the moves and gives them no speed.
+#[test]
+fn overlapping_spheres_with_no_gravity_part_without_speed() {
+    let path = write_scene(
+        "overlapping.ron",
+        r#"(
+            name: "overlapping",
+            spheres: [
+                (name: "light", position: (0.0, 0.0, 0.0), radius: 1.0),
+                (name: "heavy", position: (1.0, 0.0, 0.0), radius: 1.0, density: 3.0),
+            ],
+        )"#,
+    );
+    let r = report(&[
+        "run",
+        path.to_str().unwrap(),
+        "--duration",
+        "1",
+        "--dt",
+        "0.1",
+    ]);
+    let (light, heavy) = (body(&r, "light"), body(&r, "heavy"));
+    assert_close(
+        vec3(&light["position"]),
+        [-0.75, 0.0, 0.0],
+        1e-12,
+        "light x",
+    );
+    assert_close(vec3(&heavy["position"]), [1.25, 0.0, 0.0], 1e-12, "heavy x");
+    assert_eq!(vec3(&light["velocity"]), [0.0; 3]);
+    assert_eq!(vec3(&heavy["velocity"]), [0.0; 3]);
+    let stats = &r["stats"];
+    // Both moved in each of the first eight steps.
+    assert_eq!(stats["separated"], 16);
+    assert!(stats["max_overlap"].as_f64().unwrap().abs() < 1e-12);
+    assert_eq!(stats["kinetic_energy"], 0.0);
+}
+
 #[test]
 fn bisection_is_selectable_and_reported() {
     let scene = assets().join("two_spheres.ron");

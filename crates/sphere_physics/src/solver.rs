@@ -351,6 +351,9 @@ pub(crate) struct Solver {
     separate_at: Vec<DVec3>,
     separate_moves: Vec<DVec3>,
     separate_pairs: Vec<(u32, u32)>,
+    /// Whether no dynamic body accelerates this step (no gravity, no applied force): then
+    /// overlaps left at its end are moved apart (see [`Solver::separate`]).
+    nothing_accelerates: bool,
 }
 
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
@@ -637,6 +640,7 @@ impl Solver {
         if let Some(index) = overflow {
             return Err(index);
         }
+        self.nothing_accelerates = largest_acceleration == 0.0;
         self.resting_scale = if largest_acceleration > 0.0 {
             settings.resting_factor * dt
         } else {
@@ -991,7 +995,7 @@ impl Solver {
         let mut max_overlap = self.deepest_tested(dt);
         // With nothing accelerating there is no resting solve to undo an overlap: the
         // separation moves such pairs apart instead (see `Solver::separate`).
-        if self.resting_scale == 0.0 && max_overlap > 0.0 {
+        if self.nothing_accelerates && max_overlap > 0.0 {
             let moved = self.separate(bodies, ctx);
             if moved > 0 {
                 stats.separated = stats.separated.saturating_add(moved);

@@ -103,7 +103,8 @@ pub struct StepProfile {
     pub events: Duration,
     /// Positions and velocities written back, energies and momentum summed.
     pub write_back: Duration,
-    /// The largest overlap left at the end of the step.
+    /// The largest overlap left at the end of the step, and with nothing accelerating the
+    /// moves apart of overlapping spheres (see [`World::step`](crate::World::step)).
     pub overlap: Duration,
 }
 

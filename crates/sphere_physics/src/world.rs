@@ -413,11 +413,11 @@ impl World {
     /// force on any sphere) the resting solve pushes overlapping spheres apart within the step.
     /// With none, spheres left overlapping at the step's end (placed so, or parting slower than
     /// they overlap) are moved apart by their positions: each pair to touching, its spheres in
-    /// proportion to their inverse masses (so the centre of mass stays, and momentum and
-    /// kinetic energy are kept exactly), each sphere at most a tenth of its radius a step (so a
-    /// crowd placed a radius deep comes apart over a few dozen steps, and a sphere deep in a
-    /// bigger one creeps out). Fixed spheres and spheres on strings are not moved.
-    /// [`StepStats::separated`] counts the spheres moved.
+    /// proportion to their inverse masses (so momentum and kinetic energy are kept exactly, and
+    /// the centre of mass too but for moves away from a fixed sphere or one on a string, which
+    /// are not moved), each sphere at most a tenth of its radius a step (a substep, with
+    /// substeps): a crowd placed a radius deep comes apart over a few dozen steps, and a sphere
+    /// deep in a bigger one creeps out. [`StepStats::separated`] counts the spheres moved.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
         if !(dt.is_normal() && dt > 0.0) {
             return Err(WorldError::InvalidTimeStep(dt));

@@ -2,7 +2,8 @@
 //! no resting solve, and spheres placed overlapping stayed overlapping: a 4 x 4 x 4 crowd of
 //! radius 0.5 placed 0.5 m apart at rest was still a radius deep after 10 s, and a moving
 //! crowd that lost its speed in its first collisions kept its overlaps too (5 x 5 x 5, 0.6 m
-//! apart at up to 1 m/s, restitution 0: 0.37 m deep after 2 s, 0.14 m after 10 s). Now such overlaps are undone at
+//! apart, velocity components up to 1 m/s, restitution 0: 0.37 m deep after 2 s, 0.14 m
+//! after 10 s). Now such overlaps are undone at
 //! each step's end by moving the pair's spheres apart (each by its inverse mass's share, at
 //! most a tenth of its radius a step), without touching a velocity: momentum and kinetic
 //! energy are kept exactly, and so is the centre of mass.
@@ -12,8 +13,8 @@ use sphere_physics::{Settings, SphereDesc, World};
 
 const DT: f64 = 1.0 / 60.0;
 
-/// A cube of `side`³ spheres of radius 0.5 whose centres are `spacing` apart, moving at up to
-/// `speed` in random directions (a fixed sequence), with `restitution`, and no gravity.
+/// A cube of `side`³ spheres of radius 0.5 whose centres are `spacing` apart, each velocity
+/// component up to `speed` either way (a fixed sequence), with `restitution`, and no gravity.
 fn crowd(side: usize, spacing: f64, speed: f64, restitution: f64) -> World {
     let mut world = World::new(Settings::default());
     let mut state = 11u64;
@@ -105,7 +106,14 @@ fn regression_a_crowd_stopped_by_its_collisions_with_no_gravity_comes_apart() {
     let momentum = world.momentum();
     let mut energy = world.kinetic_energy();
     for step in 0..120 {
-        world.step(DT).unwrap();
+        let stats = *world.step(DT).unwrap();
+        // 125 spheres: the broad phase's grid finds the pairs the moves bring together.
+        assert!(
+            deepest(&world) <= stats.max_overlap + 1e-12,
+            "step {step}: reported {} against {}",
+            stats.max_overlap,
+            deepest(&world)
+        );
         let now = world.kinetic_energy();
         assert!(
             now <= energy * (1.0 + 1e-9),
@@ -188,18 +196,75 @@ fn a_sphere_inside_a_fixed_one_comes_out_along_its_normal() {
     assert_eq!(world.body(ball).unwrap().velocity(), DVec3::ZERO);
 }
 
-/// Under gravity the resting solve undoes overlaps (by pushes within the step): the separation
-/// is not used, even for spheres that press on nothing.
+/// Under gravity the resting solve undoes overlaps (by pushes within the step), not the
+/// separation, even for spheres that press on nothing (two falling side by side); with the
+/// resting solve turned off (`resting_factor` 0) nothing moves them apart either.
 #[test]
 fn with_gravity_the_separation_is_not_used() {
-    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-    world
-        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.0, 10.0, 0.0)))
-        .unwrap();
-    world
-        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.5, 10.0, 0.0)))
-        .unwrap();
-    for _ in 0..10 {
-        assert_eq!(world.step(DT).unwrap().separated, 0);
+    for resting_factor in [Settings::default().resting_factor, 0.0] {
+        let mut settings = Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0));
+        settings.resting_factor = resting_factor;
+        let mut world = World::new(settings);
+        world
+            .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.0, 10.0, 0.0)))
+            .unwrap();
+        world
+            .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.5, 10.0, 0.0)))
+            .unwrap();
+        for _ in 0..60 {
+            assert_eq!(world.step(DT).unwrap().separated, 0);
+        }
+        if resting_factor > 0.0 {
+            // Within the contact band (a millionth of the diameter): touching.
+            assert!(deepest(&world) <= 1.01e-6, "{}", deepest(&world));
+        } else {
+            assert!((deepest(&world) - 0.5).abs() <= 1e-9, "{}", deepest(&world));
+        }
     }
+}
+
+/// A sphere on a string is not moved (its string binds it): a free sphere overlapping it
+/// moves the whole way, a tenth of its radius a step.
+#[test]
+fn a_sphere_on_a_string_is_not_moved() {
+    let mut world = World::new(Settings::default());
+    let hung = world
+        .add_sphere(SphereDesc::new(0.5).tethered(DVec3::new(0.0, 2.0, 0.0), 2.0))
+        .unwrap();
+    let free = world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.7, 0.0, 0.0)))
+        .unwrap();
+    // 0.3 m of overlap: six steps of 5 cm.
+    for step in 1..=7 {
+        let stats = *world.step(DT).unwrap();
+        assert_eq!(stats.separated, u32::from(step <= 6), "step {step}");
+        assert_eq!(world.body(hung).unwrap().position(), DVec3::ZERO);
+        let x = world.body(free).unwrap().position().x;
+        let expected = 0.7 + 0.05 * f64::from(step.min(6));
+        assert!((x - expected).abs() < 1e-12, "step {step}: {x}");
+    }
+    assert_eq!(world.body(free).unwrap().velocity(), DVec3::ZERO);
+}
+
+/// Found in review: a sphere of radius 1e-100 (inverse mass 2e299) deep in one of radius 1e10
+/// overflowed the move's inverse-mass share to infinity, and wrote NaN into its position. Now
+/// the share is taken first and the cap worked out in its own units: it moves by its cap (a
+/// tenth of its radius, lost in rounding next to its position) and stays finite.
+#[test]
+fn regression_a_tiny_sphere_deep_in_a_huge_one_stays_finite() {
+    let mut world = World::new(Settings::default());
+    let huge = world.add_sphere(SphereDesc::new(1e10)).unwrap();
+    let tiny = world
+        .add_sphere(SphereDesc::new(1e-100).at(DVec3::new(1.0, 0.0, 0.0)))
+        .unwrap();
+    for _ in 0..3 {
+        let stats = *world.step(DT).unwrap();
+        assert!(stats.max_overlap.is_finite());
+        for id in [huge, tiny] {
+            let body = world.body(id).unwrap();
+            assert!(body.position().is_finite(), "{}", body.position());
+            assert_eq!(body.velocity(), DVec3::ZERO);
+        }
+    }
+    assert_eq!(world.body(tiny).unwrap().position().y, 0.0);
 }

@@ -73,7 +73,7 @@ proptest! {
     /// A crowd placed overlapping at rest: nothing gains a speed, the centre of mass stays,
     /// the step reports the deepest overlap, and within 2 s every pair is apart or touching
     /// (the slowest of these cases takes 52 steps; a sphere at the centre of one ten times its
-    /// radius would take 100, at a tenth of its radius a step).
+    /// radius would take 110, at a tenth of its radius a step).
     #[test]
     fn a_crowd_at_rest_comes_apart_in_place(spheres in crowd()) {
         let mut world = world_of(&spheres);
@@ -129,7 +129,7 @@ proptest! {
             prop_assert!(now <= energy * (1.0 + 1e-9) + 1e-12, "step {}: {} -> {}", step, energy, now);
             energy = now;
         }
-        // Measured: every case ends with no pair overlapping at all.
+        // Measured: every case ends with no pair overlapping (0 here in every case).
         prop_assert!(deepest_relative(&world) <= 2e-6, "still {} of a radius deep", deepest_relative(&world));
     }
 }

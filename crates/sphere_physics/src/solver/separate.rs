@@ -6,8 +6,9 @@
 //! presses a contact, so nothing is a resting contact), and two spheres left overlapping at
 //! rest, or parting slower than they overlap, stayed so for ever. Here such pairs are moved
 //! apart at the step's end, each body along the pair's normal in proportion to its inverse
-//! mass: the centre of mass stays where it is, and no velocity changes, so momentum and
-//! kinetic energy are kept exactly. Part of [`Solver`]: these are its methods.
+//! mass: the pair's centre of mass stays where it is (unless one of them is fixed or on a
+//! string, and is not moved), and no velocity changes, so momentum and kinetic energy are
+//! kept exactly. Part of [`Solver`]: these are its methods.
 
 use glam::DVec3;
 
@@ -26,14 +27,17 @@ impl Solver {
     /// Each pair is moved to touching, its bodies in proportion to their inverse masses; a body
     /// moves at most [`MAX_CORRECTION`] of its radius in a step, as a push under gravity does,
     /// so a sphere placed deep inside others comes out over a few steps and one caught between
-    /// fixed spheres cannot be flung. Fixed spheres and spheres on strings are not moved (a
-    /// string's length binds its sphere's position). Two spheres at the same point part along
-    /// x. Returns how many bodies moved.
+    /// fixed spheres cannot be flung (the cap is a substep's, and apart from the pushes of a
+    /// step that falls back). Fixed spheres and spheres on strings are not moved (a string's
+    /// length binds its sphere's position). Two spheres at the same point part along x.
+    /// Returns how many bodies moved.
     ///
     /// The pairs come from those the step tested (a superset of those that can end it
     /// overlapping) and from the broad phase, asked for every pair within reach of a body that
-    /// moves, so a move into a sphere not overlapped before is undone in the same step, and
-    /// [`crate::StepStats::max_overlap`] sees every pair the moves bring together.
+    /// moves, so a move into a sphere not overlapped before is moved apart by the sweeps that
+    /// follow (within the caps), and [`crate::StepStats::max_overlap`] sees every pair the
+    /// moves bring together. A dynamic body within reach of a moving one moves too, so a
+    /// clump of touching spheres joins whole while any pair in it overlaps.
     pub(super) fn separate(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>) -> u32 {
         let dt = ctx.dt;
         let n = self.segments.len();
@@ -126,9 +130,10 @@ impl Solver {
                 } else {
                     DVec3::X
                 };
+                // The shares first: an inverse mass times an overlap can overflow.
                 let (move_i, move_j) = (
-                    -normal * (overlap * wi / (wi + wj)),
-                    normal * (overlap * wj / (wi + wj)),
+                    -normal * (wi / (wi + wj) * overlap),
+                    normal * (wj / (wi + wj) * overlap),
                 );
                 // One scale for both, so the pair's centre of mass stays, and each body's move
                 // in the step stays within its cap (a move back towards where it was is free).
@@ -139,7 +144,8 @@ impl Solver {
                         scale = scale.min(within_cap(self.separate_moves[k], m, cap));
                     }
                 }
-                if scale <= 0.0 {
+                // Not a positive number (a NaN from an overflow included): no move.
+                if scale.is_nan() || scale <= 0.0 {
                     continue;
                 }
                 for (k, m) in [(i, move_i), (j, move_j)] {
@@ -162,8 +168,10 @@ impl Solver {
                 continue;
             }
             count += 1;
-            bodies[self.order[k] as usize].desc.position = self.separate_at[k];
+            // The body is written where its segment now ends, so the step's deepest overlap
+            // is read from the same numbers.
             self.segments[k].position += shift;
+            bodies[self.order[k] as usize].desc.position = self.final_position(k, dt);
         }
         // The step's deepest overlap is sought among the tested pairs: these join them.
         self.tested.extend_from_slice(&self.separate_pairs);
@@ -205,18 +213,18 @@ impl Solver {
 
 /// The largest `s` in `[0, 1]` for which `so_far + s * step` is no longer than `cap` (`so_far`
 /// being no longer than it): 0 if `step` points out of the ball where `so_far` is on its edge.
+/// Worked out along `step`'s direction in units of the cap, so that nothing overflows at any
+/// radius, nor for a step far longer than the cap.
 fn within_cap(so_far: DVec3, step: DVec3, cap: f64) -> f64 {
-    let (mm, am) = (step.length_squared(), so_far.dot(step));
-    if mm == 0.0 {
+    let length = step.length();
+    if length == 0.0 {
         return 1.0;
     }
-    let inside = (cap * cap - so_far.length_squared()).max(0.0);
-    // The positive root of mm s² + 2 am s - inside, in the form without cancellation.
-    let root = (am * am + mm * inside).sqrt();
-    let s = if am <= 0.0 {
-        (root - am) / mm
-    } else {
-        inside / (root + am)
-    };
-    s.clamp(0.0, 1.0)
+    let (a, u) = (so_far / cap, step / length);
+    // How far along u, in caps, before |a + t u| = 1: the positive root of
+    // t² + 2 p t - q, in the form without cancellation.
+    let (p, q) = (a.dot(u), (1.0 - a.length_squared()).max(0.0));
+    let root = (p * p + q).sqrt();
+    let t = if p <= 0.0 { root - p } else { q / (root + p) };
+    (t * (cap / length)).clamp(0.0, 1.0)
 }

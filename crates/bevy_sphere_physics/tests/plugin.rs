@@ -1116,3 +1116,41 @@ fn regression_a_runaway_body_without_an_entity_is_removed_too() {
     assert!((position(&app, ball).y - 3.0 / 64.0).abs() < 1e-12);
     assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
 }
+
+/// Spheres a game spawns overlapping, with no gravity, are moved apart by the core (a tenth
+/// of a radius a step each, in equal shares for equal masses) and given no speed; their
+/// components and transforms follow.
+#[test]
+fn spheres_spawned_overlapping_with_no_gravity_move_apart() {
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::ZERO));
+    let mut spawn = |x: f64| {
+        app.world_mut()
+            .spawn((
+                SphereBody::new(0.5),
+                SpherePosition(DVec3::new(x, 0.0, 0.0)),
+                SphereVelocity(DVec3::ZERO),
+            ))
+            .id()
+    };
+    let (a, b) = (spawn(0.0), spawn(0.7));
+    run_steps(&mut app, 1);
+    assert_eq!(
+        app.world()
+            .resource::<SpherePhysicsDiagnostics>()
+            .last
+            .separated,
+        2
+    );
+    // 0.3 m of overlap, 5 cm a step each: apart after three steps.
+    run_steps(&mut app, 9);
+    assert!((position(&app, a).x + 0.15).abs() < 1e-12);
+    assert!((position(&app, b).x - 0.85).abs() < 1e-12);
+    assert_eq!(velocity(&app, a), DVec3::ZERO);
+    assert_eq!(velocity(&app, b), DVec3::ZERO);
+    let diagnostics = app.world().resource::<SpherePhysicsDiagnostics>();
+    assert_eq!(diagnostics.last.separated, 0);
+    assert_eq!(diagnostics.collisions, 0);
+    app.update();
+    let shown = app.world().get::<Transform>(b).unwrap().translation;
+    assert!((shown.x - 0.85).abs() < 1e-6, "{shown}");
+}

@@ -248,8 +248,9 @@ fn a_sphere_on_a_string_is_not_moved() {
 
 /// Found in review: a sphere of radius 1e-100 (inverse mass 2e299) deep in one of radius 1e10
 /// overflowed the move's inverse-mass share to infinity, and wrote NaN into its position. Now
-/// the share is taken first and the cap worked out in its own units: it moves by its cap (a
-/// tenth of its radius, lost in rounding next to its position) and stays finite.
+/// the share is taken first and the cap worked out in its own units: its move (its cap, a
+/// tenth of its radius) is lost in rounding next to its position, the huge one's share
+/// underflows, so neither moves nor is counted, and both stay finite.
 #[test]
 fn regression_a_tiny_sphere_deep_in_a_huge_one_stays_finite() {
     let mut world = World::new(Settings::default());
@@ -260,6 +261,7 @@ fn regression_a_tiny_sphere_deep_in_a_huge_one_stays_finite() {
     for _ in 0..3 {
         let stats = *world.step(DT).unwrap();
         assert!(stats.max_overlap.is_finite());
+        assert_eq!(stats.separated, 0);
         for id in [huge, tiny] {
             let body = world.body(id).unwrap();
             assert!(body.position().is_finite(), "{}", body.position());
@@ -267,4 +269,33 @@ fn regression_a_tiny_sphere_deep_in_a_huge_one_stays_finite() {
         }
     }
     assert_eq!(world.body(tiny).unwrap().position().y, 0.0);
+}
+
+/// Found in review: two spheres so light that their inverse masses' sum overflows (radius 1,
+/// density 2e-309: masses near 8e-309) got shares of 0 and were never moved apart. Now
+/// the shares are taken from the weights over the larger: equal spheres share equally, a
+/// tenth of a radius a step each.
+#[test]
+fn regression_spheres_too_light_to_sum_their_inverse_masses_still_part() {
+    let mut world = World::new(Settings::default());
+    let radius = 1.0;
+    let light = |x: f64| {
+        SphereDesc::new(radius)
+            .at(DVec3::new(x, 0.0, 0.0))
+            .with_density(2e-309)
+    };
+    let a = world.add_sphere(light(0.0)).unwrap();
+    let b = world.add_sphere(light(radius)).unwrap();
+    assert!(world.body(a).unwrap().inverse_mass() > 0.5 * f64::MAX);
+    // A radius of overlap: five steps of a tenth of a radius each.
+    for step in 1..=6 {
+        let stats = *world.step(DT).unwrap();
+        assert_eq!(
+            stats.separated,
+            if step <= 5 { 2 } else { 0 },
+            "step {step}"
+        );
+    }
+    let gap = world.body(b).unwrap().position().x - world.body(a).unwrap().position().x;
+    assert!((gap - 2.0 * radius).abs() <= 1e-12 * radius, "{gap:e}");
 }

@@ -36,8 +36,9 @@ impl Solver {
     /// overlapping) and from the broad phase, asked for every pair within reach of a body that
     /// moves, so a move into a sphere not overlapped before is moved apart by the sweeps that
     /// follow (within the caps), and [`crate::StepStats::max_overlap`] sees every pair the
-    /// moves bring together. A dynamic body within reach of a moving one moves too, so a
-    /// clump of touching spheres joins whole while any pair in it overlaps.
+    /// moves bring together. A dynamic body within reach of a moving one may move too (it
+    /// joins the sweeps, and moves if a pair of its comes to overlap), so a clump of touching
+    /// spheres joins whole while any pair in it overlaps.
     pub(super) fn separate(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>) -> u32 {
         let dt = ctx.dt;
         let n = self.segments.len();
@@ -65,7 +66,7 @@ impl Solver {
         }
         // Every pair a move can bring into touch. A moving body's box is its sphere grown by
         // its cap; every other body's still holds its sphere at the step's end. A dynamic body
-        // within reach of a moving one moves too (so the moves keep the centre of mass), and
+        // within reach of a moving one may move too (so the moves keep the centre of mass), and
         // its own neighbours are sought in turn.
         let mut found = std::mem::take(&mut self.candidates);
         let mut s = 0;
@@ -122,9 +123,12 @@ impl Solver {
                 let apart = pj - pi;
                 let distance = apart.length();
                 let overlap = reach - distance;
-                if overlap <= band || wi + wj == 0.0 {
+                // The shares, from the weights over the larger (their sum can overflow).
+                let larger = wi.max(wj);
+                if overlap <= band || larger == 0.0 {
                     continue;
                 }
+                let (ri, rj) = (wi / larger, wj / larger);
                 let normal = if distance > 0.0 {
                     apart / distance
                 } else {
@@ -132,8 +136,8 @@ impl Solver {
                 };
                 // The shares first: an inverse mass times an overlap can overflow.
                 let (move_i, move_j) = (
-                    -normal * (wi / (wi + wj) * overlap),
-                    normal * (wj / (wi + wj) * overlap),
+                    -normal * (ri / (ri + rj) * overlap),
+                    normal * (rj / (ri + rj) * overlap),
                 );
                 // One scale for both, so the pair's centre of mass stays, and each body's move
                 // in the step stays within its cap (a move back towards where it was is free).
@@ -141,20 +145,23 @@ impl Solver {
                 for (k, m) in [(i, move_i), (j, move_j)] {
                     if bit(&self.separate_bits, k) {
                         let cap = self.separation_cap(k);
-                        scale = scale.min(within_cap(self.separate_moves[k], m, cap));
+                        // Not `min`, which would drop a NaN: a NaN scale means no move.
+                        let within = within_cap(self.separate_moves[k], m, cap);
+                        if within.is_nan() || within < scale {
+                            scale = within;
+                        }
                     }
                 }
-                // Not a positive number (a NaN from an overflow included): no move.
                 if scale.is_nan() || scale <= 0.0 {
                     continue;
                 }
                 for (k, m) in [(i, move_i), (j, move_j)] {
-                    if bit(&self.separate_bits, k) {
+                    if bit(&self.separate_bits, k) && m * scale != DVec3::ZERO {
                         self.separate_at[k] += m * scale;
                         self.separate_moves[k] += m * scale;
+                        moved = true;
                     }
                 }
-                moved = true;
             }
             if !moved {
                 break;
@@ -167,11 +174,14 @@ impl Solver {
             if shift == DVec3::ZERO {
                 continue;
             }
-            count += 1;
             // The body is written where its segment now ends, so the step's deepest overlap
-            // is read from the same numbers.
+            // is read from the same numbers. A move lost to rounding next to the position (a
+            // cap far below its size) is not counted.
             self.segments[k].position += shift;
-            bodies[self.order[k] as usize].desc.position = self.final_position(k, dt);
+            let body = &mut bodies[self.order[k] as usize];
+            let before = body.desc.position;
+            body.desc.position = self.final_position(k, dt);
+            count += u32::from(body.desc.position != before);
         }
         // The step's deepest overlap is sought among the tested pairs: these join them.
         self.tested.extend_from_slice(&self.separate_pairs);
@@ -226,5 +236,9 @@ fn within_cap(so_far: DVec3, step: DVec3, cap: f64) -> f64 {
     let (p, q) = (a.dot(u), (1.0 - a.length_squared()).max(0.0));
     let root = (p * p + q).sqrt();
     let t = if p <= 0.0 { root - p } else { q / (root + p) };
+    if t <= 0.0 {
+        // On the cap's edge, pointing out (and no 0 times an overflowed ratio).
+        return 0.0;
+    }
     (t * (cap / length)).clamp(0.0, 1.0)
 }

@@ -10,24 +10,14 @@
 //! pairs its final drifts end overlapping, and the step reports the deepest overlap there is.
 //! (This is also the one test that reaches the fallback's out-of-rounds branch.)
 
+mod common;
+
+use common::deepest_overlap;
 use sphere_physics::glam::DVec3;
 use sphere_physics::{Settings, SphereDesc, World};
 
 const DT: f64 = 1.0 / 60.0;
 const RADIUS: f64 = 0.5;
-
-/// The deepest overlap between any two spheres, by brute force.
-fn deepest_overlap(world: &World) -> f64 {
-    let bodies = world.bodies();
-    let mut deepest = 0.0f64;
-    for (i, a) in bodies.iter().enumerate() {
-        for b in &bodies[i + 1..] {
-            let overlap = a.radius() + b.radius() - (b.position() - a.position()).length();
-            deepest = deepest.max(overlap);
-        }
-    }
-    deepest
-}
 
 #[test]
 fn regression_a_step_that_runs_out_of_rounds_reports_its_deepest_overlap() {

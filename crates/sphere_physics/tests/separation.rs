@@ -2,6 +2,9 @@
 //! gravity are moved apart by their positions alone (see `World::step`), so velocities,
 //! momentum, kinetic energy and the centre of mass are kept, and the scene comes apart.
 
+mod common;
+
+use common::{centre_of_mass, deepest_overlap};
 use proptest::prelude::*;
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -46,15 +49,6 @@ fn world_of(spheres: &[(f64, f64, f64, f64, f64)]) -> World {
     world
 }
 
-fn centre_of_mass(world: &World) -> DVec3 {
-    let (mut sum, mut mass) = (DVec3::ZERO, 0.0);
-    for body in world.bodies() {
-        sum += body.mass() * body.position();
-        mass += body.mass();
-    }
-    sum / mass
-}
-
 /// The deepest overlap of any pair beyond its contact band (a millionth of the smaller
 /// diameter, plus the tolerance: within it the pair touches), 0 if none.
 fn deepest_beyond_band(world: &World) -> f64 {
@@ -85,13 +79,7 @@ proptest! {
             let stats = *world.step(DT).unwrap();
             prop_assert!(world.bodies().iter().all(|b| b.velocity() == DVec3::ZERO), "step {}", step);
             prop_assert!((centre_of_mass(&world) - centre).length() <= 1e-12, "step {}", step);
-            let bodies = world.bodies();
-            let mut deepest = 0.0f64;
-            for (i, a) in bodies.iter().enumerate() {
-                for b in &bodies[i + 1..] {
-                    deepest = deepest.max(a.radius() + b.radius() - (b.position() - a.position()).length());
-                }
-            }
+            let deepest = deepest_overlap(&world);
             prop_assert!(deepest <= stats.max_overlap + 1e-12, "step {}: {} over {}", step, deepest, stats.max_overlap);
             if deepest_beyond_band(&world) <= 0.0 {
                 apart = true;

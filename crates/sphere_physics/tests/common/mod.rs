@@ -1,7 +1,8 @@
 //! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
 //! cases it found, the creep allowance, a sheet of spheres over fixed ones, head-on pairs
-//! that must each collide within one step, a pit of spheres dropped into an open box, and
-//! spheres among others hanging on strings.
+//! that must each collide within one step, a pit of spheres dropped into an open box,
+//! spheres among others hanging on strings, a crowd placed overlapping with no gravity, and
+//! the deepest overlap and centre of mass of a world.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
@@ -198,4 +199,64 @@ pub fn strung_world(spheres: &[Strung], settings: Settings) -> World {
         world.add_sphere(sphere).unwrap();
     }
     world
+}
+
+/// A cube of `side`³ spheres of radius 0.5 whose centres are `spacing` apart (under a
+/// diameter: each overlaps its neighbours), each velocity component up to `speed` either way
+/// (a fixed sequence from `seed`), with `restitution`, and no gravity.
+pub fn overlapping_crowd(
+    side: usize,
+    spacing: f64,
+    speed: f64,
+    restitution: f64,
+    seed: u64,
+) -> World {
+    let mut world = World::new(Settings::default());
+    let mut state = seed;
+    let mut unit = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for i in 0..side {
+        for j in 0..side {
+            for k in 0..side {
+                let at = DVec3::new(i as f64, j as f64, k as f64) * spacing;
+                let velocity = DVec3::new(unit(), unit(), unit()) * speed;
+                world
+                    .add_sphere(
+                        SphereDesc::new(0.5)
+                            .at(at)
+                            .moving(velocity)
+                            .with_restitution(restitution),
+                    )
+                    .unwrap();
+            }
+        }
+    }
+    world
+}
+
+/// The deepest overlap between any two spheres, by brute force (0 if none overlap).
+pub fn deepest_overlap(world: &World) -> f64 {
+    let bodies = world.bodies();
+    let mut deepest = 0.0f64;
+    for (i, a) in bodies.iter().enumerate() {
+        for b in &bodies[i + 1..] {
+            let overlap = a.radius() + b.radius() - (b.position() - a.position()).length();
+            deepest = deepest.max(overlap);
+        }
+    }
+    deepest
+}
+
+/// The mass-weighted mean position of the dynamic spheres.
+pub fn centre_of_mass(world: &World) -> DVec3 {
+    let (mut sum, mut mass) = (DVec3::ZERO, 0.0);
+    for body in world.bodies().iter().filter(|b| !b.is_fixed()) {
+        sum += body.mass() * body.position();
+        mass += body.mass();
+    }
+    sum / mass
 }

@@ -193,6 +193,16 @@ mod properties {
         (-5.0..5.0f64, -5.0..5.0f64, -5.0..5.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
     }
 
+    /// From one to `most` of the ten pairs of five bodies, in order.
+    fn pairs_of_five(most: usize) -> impl Strategy<Value = Vec<(usize, usize)>> {
+        prop::sample::subsequence(
+            (0..5)
+                .flat_map(|a| (a + 1..5).map(move |b| (a, b)))
+                .collect::<Vec<_>>(),
+            1..=most,
+        )
+    }
+
     /// `cases` cases from a fixed seed, so that a run (and CI) repeats bit for bit; set
     /// `PROPTEST_RNG_SEED` to explore other cases.
     fn config(cases: u32) -> ProptestConfig {
@@ -256,10 +266,7 @@ mod properties {
             mut velocities in prop::collection::vec(vec3(), 5),
             positions in prop::collection::vec(vec3(), 5),
             // Any of the ten pairs of five bodies, up to the exact solve's eight.
-            pairs in prop::sample::subsequence(
-                (0..5).flat_map(|a| (a + 1..5).map(move |b| (a, b))).collect::<Vec<_>>(),
-                1..=8,
-            ),
+            pairs in pairs_of_five(8),
             restitution in prop_oneof![Just(1.0), Just(0.0), 0.0..=1.0f64],
         ) {
             let (inverse, contacts) =
@@ -309,10 +316,7 @@ mod properties {
             velocities in prop::collection::vec(vec3(), 5),
             positions in prop::collection::vec(vec3(), 5),
             // Any of the ten pairs of five bodies: from one contact to all ten.
-            pairs in prop::sample::subsequence(
-                (0..5).flat_map(|a| (a + 1..5).map(move |b| (a, b))).collect::<Vec<_>>(),
-                1..=10,
-            ),
+            pairs in pairs_of_five(10),
             biases in prop::collection::vec(0.0..1.0f64, 10),
         ) {
             let mut inverse: Vec<f64> = masses.iter().map(|m| 1.0 / m).collect();
@@ -403,10 +407,7 @@ mod properties {
             fixed in any::<bool>(),
             mut velocities in prop::collection::vec(vec3(), 5),
             positions in prop::collection::vec(vec3(), 5),
-            pairs in prop::sample::subsequence(
-                (0..5).flat_map(|a| (a + 1..5).map(move |b| (a, b))).collect::<Vec<_>>(),
-                1..=10,
-            ),
+            pairs in pairs_of_five(10),
             restitutions in prop::collection::vec(
                 prop_oneof![Just(1.0), Just(0.0), 0.0..=1.0f64], 10),
         ) {

@@ -33,8 +33,11 @@
 //! - **Place a tethered sphere by its `Transform`** at its string's length: `f32` rounding that
 //!   puts it a hair outside the string is undone.
 //! - **Spawn into an occupied place**: spheres that overlap and approach are pushed apart by
-//!   the collision response at once; overlapping spheres at rest stay as they are (the core
-//!   never moves a sphere except along its velocity), so spawn them apart.
+//!   the collision response at once. Overlapping spheres are also moved apart by their
+//!   positions, a pair by at most a tenth of the smaller radius a step, without gaining speed
+//!   (under gravity by the core's resting solve, with nothing accelerating at each step's end;
+//!   see [`sphere_physics::World::step`]), so a crowd spawned into itself comes apart over a
+//!   few steps; fixed spheres and spheres on strings are not moved.
 //!
 //! Collisions come as [`SphereCollision`] messages and as [`SphereHit`] entity events that
 //! observers on either sphere receive, once per collision. [`SpherePhysicsDiagnostics`] holds

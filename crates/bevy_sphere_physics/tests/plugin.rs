@@ -1154,3 +1154,47 @@ fn spheres_spawned_overlapping_with_no_gravity_move_apart() {
     let shown = app.world().get::<Transform>(b).unwrap().translation;
     assert!((shown.x - 0.85).abs() < 1e-6, "{shown}");
 }
+
+/// The plugin's docs said that spheres spawned overlapping at rest stay so ("spawn them
+/// apart"); under gravity the core's resting solve moves them apart, without leaving them a
+/// speed.
+#[test]
+fn spheres_spawned_overlapping_on_a_floor_move_apart_and_rest() {
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * 9.81));
+    let floor = 1.0e4;
+    app.world_mut().spawn((
+        SphereBody::new(floor),
+        SpherePosition(DVec3::new(0.0, -floor, 0.0)),
+        FixedSphere,
+    ));
+    let mut spawn = |x: f64| {
+        app.world_mut()
+            .spawn((
+                SphereBody::new(0.5),
+                SpherePosition(DVec3::new(x, 0.5, 0.0)),
+                SphereVelocity(DVec3::ZERO),
+            ))
+            .id()
+    };
+    // 0.3 m into each other, side by side on the floor: the pair parts by at most a tenth of
+    // the smaller radius (5 cm) a step, so it is apart in six steps.
+    let (a, b) = (spawn(-0.35), spawn(0.35));
+    let depth = |app: &App| 1.0 - (position(app, b) - position(app, a)).length();
+    run_steps(&mut app, 4);
+    assert!(depth(&app) > 0.05, "apart too soon: {} m deep", depth(&app));
+    run_steps(&mut app, 4);
+    assert!(depth(&app) < 1e-6, "still {} m deep", depth(&app));
+    // Then they rest: no speed but the slide off the huge floor's curve (g x / R over 1 s,
+    // under 5e-4 m/s), still on it, still apart.
+    run_steps(&mut app, 52);
+    assert!(depth(&app) < 1e-6, "{} m deep again", depth(&app));
+    for k in [a, b] {
+        let v = velocity(&app, k);
+        assert!(v.length() < 5e-4, "{k}: {v}");
+        assert!(
+            (position(&app, k).y - 0.5).abs() < 1e-4,
+            "{k}: {}",
+            position(&app, k)
+        );
+    }
+}

@@ -34,10 +34,11 @@
 //!   puts it a hair outside the string is undone.
 //! - **Spawn into an occupied place**: spheres that overlap and approach are pushed apart by
 //!   the collision response at once. Overlapping spheres are also moved apart by their
-//!   positions, a pair by at most a tenth of the smaller radius a step, without gaining speed
-//!   (under gravity by the core's resting solve, with nothing accelerating at each step's end;
-//!   see [`sphere_physics::World::step`]), so a crowd spawned into itself comes apart over a
-//!   few steps; fixed spheres and spheres on strings are not moved.
+//!   positions, without gaining speed (see [`sphere_physics::World::step`]): under gravity or
+//!   an applied force by the core's resting solve, a pair by at most a tenth of the smaller
+//!   radius a step; with nothing accelerating at each step's end, each sphere by at most a
+//!   tenth of its own radius a step, fixed spheres and spheres on strings not at all. A crowd
+//!   spawned a radius deep into itself comes apart over a few dozen steps.
 //!
 //! Collisions come as [`SphereCollision`] messages and as [`SphereHit`] entity events that
 //! observers on either sphere receive, once per collision. [`SpherePhysicsDiagnostics`] holds

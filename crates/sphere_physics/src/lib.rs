@@ -1,12 +1,17 @@
 //! Exact sphere physics, without Bevy.
 //!
-//! Spheres with radius, density (so mass), restitution and an optional constant force, or fixed
-//! (infinite mass), move under gravity with a kick-drift-kick integrator
-//! ([`SemiImplicitEuler`] by default). Within each step, collisions are found by a time-of-impact
-//! method ([`ExactToi`], a closed-form swept test, by default; or the classic [`Bisection`]) and
-//! resolved one at a time, in time order, with an impulse along the line of centres that
-//! conserves momentum, and kinetic energy when elastic. Touching chains propagate contact by
-//! contact, so a Newton's cradle with no gaps sends exactly one ball out.
+//! Spheres with radius, density (so mass), restitution and an optional constant force, fixed
+//! (infinite mass) or hanging on a string ([`Tether`]), move under gravity with a
+//! kick-drift-kick integrator ([`SemiImplicitEuler`] by default). Within each step, collisions
+//! are found by a time-of-impact method ([`ExactToi`], a closed-form swept test, by default; or
+//! the classic [`Bisection`]) and resolved in time order with impulses along the lines of
+//! centres that conserve momentum, and kinetic energy when elastic. Touching chains propagate
+//! contact by contact, so a Newton's cradle with no gaps sends exactly one ball out; impacts
+//! at one instant are solved together. Resting contacts (pairs pressed together, closing no
+//! faster than a few steps of their acceleration) are solved together at the step's start,
+//! with restitution 0, and so is the rest of a step whose collision budget runs out
+//! ([`Settings::max_collisions_per_body`]). Overlaps are undone by moving the spheres, never
+//! by giving them speed (see [`World::step`]).
 //!
 //! The parts, each in its own module:
 //! - [`body`]: bodies and their validation ([`SphereDesc`], [`Body`], [`BodyError`]);
@@ -15,6 +20,8 @@
 //! - [`toi`]: time of impact behind the [`TimeOfImpact`] trait;
 //! - [`response`]: the impulse, [`resolve`];
 //! - [`world`]: the [`World`] and its [`Settings`];
+//! - [`stats`]: what a step did ([`StepStats`], [`Collision`], [`StepProfile`]);
+//! - [`tolerance`]: the [`Tolerance`] of every equality test;
 //! - [`scene`]: scene files ([`SceneDesc`]);
 //! - [`generate`]: seeded generators of many spheres ([`generate::Generator`]).
 //!

@@ -411,8 +411,8 @@ impl World {
     ///
     /// Overlaps are undone without giving speed. Under any acceleration (gravity, or an applied
     /// force on a sphere that is not fixed) the resting solve pushes overlapping spheres apart
-    /// within the step, a pair by at most a tenth of the smaller radius a step (see
-    /// [`Settings::resting_factor`]), and takes the push off at the step's end.
+    /// within the step, a pair by at most a tenth of the smaller radius a step, and takes the
+    /// push off at the step's end.
     /// With none, spheres left overlapping at the step's end (placed so, or parting slower than
     /// they overlap) are moved apart by their positions: each pair to touching, its spheres in
     /// proportion to their inverse masses (so momentum and kinetic energy are kept exactly, and

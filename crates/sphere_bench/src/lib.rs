@@ -36,6 +36,23 @@ pub struct Measurement {
     pub deferred: u64,
     /// Our step's phases, summed over the timed steps (when measured with profiling on).
     pub phases: Option<StepProfile>,
+    /// Each timed step of our engine, in order (empty for rapier).
+    pub per_step: Vec<StepRecord>,
+}
+
+/// What one timed step of our engine did, and how long it took.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepRecord {
+    /// Wall seconds the step took.
+    pub seconds: f64,
+    /// Collisions resolved, resting contacts included.
+    pub collisions: u32,
+    /// Of those, resting contacts.
+    pub resting: u32,
+    /// Pairs handed to the time-of-impact method.
+    pub toi_tests: u64,
+    /// Wall seconds of the step's event loop (when measured with profiling on).
+    pub events: Option<f64>,
 }
 
 impl Measurement {
@@ -97,16 +114,27 @@ pub fn measure_ours(
     let (mut collisions, mut deferred, mut toi_tests) = (0u64, 0u64, 0u64);
     let mut seconds = 0.0;
     let mut phases = profile.then(StepProfile::default);
+    let mut per_step = Vec::with_capacity(steps as usize);
     for _ in 0..steps {
         let started = Instant::now();
-        let stats = world.step(dt).expect("dt is valid");
-        seconds += started.elapsed().as_secs_f64();
+        let stats = *world.step(dt).expect("dt is valid");
+        let elapsed = started.elapsed().as_secs_f64();
+        seconds += elapsed;
         collisions += u64::from(stats.collisions);
         deferred += u64::from(stats.collisions_deferred);
         toi_tests += stats.toi_tests;
+        let mut events = None;
         if let (Some(sum), Some(step)) = (&mut phases, world.profile()) {
             *sum += *step;
+            events = Some(step.events.as_secs_f64());
         }
+        per_step.push(StepRecord {
+            seconds: elapsed,
+            collisions: stats.collisions,
+            resting: stats.resting_contacts,
+            toi_tests: stats.toi_tests,
+            events,
+        });
     }
     Measurement {
         bodies: world.len(),
@@ -119,6 +147,7 @@ pub fn measure_ours(
         max_overlap: Some(world.max_overlap()),
         deferred,
         phases,
+        per_step,
     }
 }
 
@@ -185,6 +214,7 @@ pub fn measure_rapier(
         max_overlap: Some(overlap_left(scene, descs, &world.positions())),
         deferred: 0,
         phases: None,
+        per_step: Vec::new(),
     }
 }
 

@@ -3,7 +3,7 @@
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
 //!         [--steps 60] [--settle 1] [--scenes shower,gas,pile] [--repeat 1] [--phases]
-//!         [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]
+//!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step; with
 //! `--settle N`, N times: the pile's bed at rest, say, rather than its landing), then times
@@ -13,7 +13,11 @@
 //! of the cost, and taking turns spreads any drift of the machine over all three.
 //!
 //! With `--phases` our engine also times its step's phases (`World::set_profiling`), and a
-//! second table gives each phase's ns per sphere per step in the fastest run.
+//! second table gives each phase's ns per sphere per step in the fastest run. With
+//! `--per-step`, a last table follows our fastest run of each scene step by step (every fifth
+//! timed step, and the first and last): its time, collisions, resting contacts and times of
+//! impact per collision, and with `--phases` its event loop's time per collision. The shower's
+//! cost is in its last steps, as its rain piles up on the dome.
 //!
 //! rapier's solver iterations (default 4, rapier's own default) and `length_unit` (default
 //! 0.1, the spheres' diameter: 1.0, rapier's default for metres, made it 2.3x to 2.7x
@@ -34,6 +38,8 @@ struct Options {
     scenes: Vec<String>,
     repeat: u32,
     phases: bool,
+    /// Our fastest run's steps, one by one.
+    per_step: bool,
     /// rapier's solver iterations.
     #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
     rapier_iterations: usize,
@@ -65,6 +71,7 @@ fn parse() -> Result<Options, String> {
         scenes: vec!["shower".into(), "gas".into()],
         repeat: 1,
         phases: false,
+        per_step: false,
         rapier_iterations: 4,
         rapier_length_unit: 2.0 * scenes::RADIUS,
         rapier_flat_walls: false,
@@ -94,6 +101,7 @@ fn parse() -> Result<Options, String> {
                 }
             }
             "--phases" => options.phases = true,
+            "--per-step" => options.per_step = true,
             "--rapier-iterations" => options.rapier_iterations = positive(value()?, flag)?,
             "--rapier-length-unit" => {
                 options.rapier_length_unit = value()?
@@ -105,7 +113,7 @@ fn parse() -> Result<Options, String> {
             "--rapier-flat-walls" => options.rapier_flat_walls = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile] [--repeat 1] [--phases] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
                 );
                 std::process::exit(0);
             }
@@ -177,6 +185,7 @@ fn main() {
         println!("|---|---|---|---|---|---|---|");
     }
     let mut phase_rows = Vec::new();
+    let mut step_rows = Vec::new();
     for scene_name in &options.scenes {
         for &n in &options.sizes {
             let scene = match scene_name.as_str() {
@@ -216,6 +225,9 @@ fn main() {
             if let Some(phases) = ours.phases_per_body_step() {
                 let cells: Vec<String> = phases.iter().map(|(_, ns)| format!("{ns:.0}")).collect();
                 phase_rows.push(format!("| {scene_name} | {n} | {} |", cells.join(" | ")));
+            }
+            if options.per_step {
+                step_rows.extend(step_table_rows(scene_name, n, &ours));
             }
             if ours.deferred > 0 {
                 eprintln!(
@@ -281,4 +293,44 @@ fn main() {
             println!("{row}");
         }
     }
+    if !step_rows.is_empty() {
+        println!(
+            "\nOur fastest run step by step (every fifth timed step, the first and the last):\n"
+        );
+        println!(
+            "| scene | N | step | ms | collisions | resting | tests/collision | events us/collision |"
+        );
+        println!("|---|---|---|---|---|---|---|---|");
+        for row in step_rows {
+            println!("{row}");
+        }
+    }
+}
+
+/// The `--per-step` table's rows for our run `m` of `scene` at `n` spheres.
+fn step_table_rows(scene: &str, n: u32, m: &Measurement) -> Vec<String> {
+    let last = m.per_step.len().saturating_sub(1);
+    m.per_step
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i == 0 || i == last || (i + 1) % 5 == 0)
+        .map(|(i, r)| {
+            let per = |x: f64| {
+                if r.collisions > 0 {
+                    format!("{:.2}", x / f64::from(r.collisions))
+                } else {
+                    "-".to_owned()
+                }
+            };
+            let events = r.events.map_or("-".to_owned(), |e| per(e * 1e6));
+            format!(
+                "| {scene} | {n} | {} | {:.2} | {} | {} | {} | {events} |",
+                i + 1,
+                r.seconds * 1e3,
+                r.collisions,
+                r.resting,
+                per(r.toi_tests as f64),
+            )
+        })
+        .collect()
 }

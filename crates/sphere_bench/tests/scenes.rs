@@ -1,5 +1,6 @@
 //! The benchmark scenes are what their docs say: the counts, the walls, the spheres inside
-//! them, and the pile as deep at every size (so that its cost per sphere compares across sizes).
+//! them, and the pile as deep at every size (so that its cost per sphere compares across sizes);
+//! and a measured run's steps, one by one, add up to its totals.
 
 use sphere_bench::scenes::{self, RADIUS};
 
@@ -61,4 +62,24 @@ fn the_pile_starts_inside_its_open_box_and_is_as_deep_at_every_size() {
             "the pile's beds would be {depths:?} m deep"
         );
     }
+}
+
+#[test]
+fn a_measured_run_lists_each_timed_step_and_they_add_up() {
+    // A small shower: the first collisions come in the second tenth of a second.
+    let m = sphere_bench::measure_ours(&scenes::shower(200, 1), 1, 20, 1.0 / 60.0, true);
+    assert_eq!(m.per_step.len(), 20);
+    let sum = |f: fn(&sphere_bench::StepRecord) -> u64| m.per_step.iter().map(f).sum::<u64>();
+    assert_eq!(sum(|r| u64::from(r.collisions)), m.collisions);
+    assert_eq!(sum(|r| r.toi_tests), m.toi_tests);
+    assert!(m.collisions > 0, "the rain reached the dome");
+    assert!(m.per_step.iter().all(|r| r.resting <= r.collisions));
+    let seconds: f64 = m.per_step.iter().map(|r| r.seconds).sum();
+    assert!((seconds - m.seconds).abs() <= 1e-9 * m.seconds.max(1.0));
+    let events: f64 = m.per_step.iter().map(|r| r.events.unwrap()).sum();
+    let phases = m.phases.unwrap().events.as_secs_f64();
+    assert!((events - phases).abs() <= 1e-6, "{events} against {phases}");
+    // Without profiling there is no event loop's time to give.
+    let plain = sphere_bench::measure_ours(&scenes::gas(100, 1), 1, 3, 1.0 / 60.0, false);
+    assert!(plain.per_step.iter().all(|r| r.events.is_none()));
 }

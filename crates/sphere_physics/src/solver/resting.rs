@@ -605,8 +605,8 @@ impl Solver {
         let mut last_change = 0.0f64;
         // The acceleration restarted after the last sweep (see below): each contact's
         // direction is its last change, and its start the impulse now, set as the sweep
-        // reaches it (no velocity changes, so the sweep is the same as after a pass of its
-        // own, which took a third of the sweeps' time on a pit at rest).
+        // reaches it. No velocity changes, so the sweep is the same as after a pass of its
+        // own over every contact (a pit at rest restarts after a third of its sweeps).
         let mut restarted = false;
         for sweep in 0..sweeps {
             let mut largest = 0.0f64;

@@ -274,18 +274,23 @@ fn transforms_are_interpolated_between_fixed_steps() {
     assert_eq!(f64::from(jumped), position(&app, jumping).x as f32 as f64);
 }
 
+/// A sphere of radius 0.5 spawned at `at`, moving at `velocity`.
+fn ball(app: &mut App, at: DVec3, velocity: DVec3) -> Entity {
+    app.world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(at),
+            SphereVelocity(velocity),
+        ))
+        .id()
+}
+
 /// Sphere `a` at x = -2 moving at 1 m/s towards `b`, at rest at x = 2: they meet at t = 3 s.
 fn head_on_pair(app: &mut App) -> (Entity, Entity) {
-    let mut spawn = |x: f64, v: DVec3| {
-        app.world_mut()
-            .spawn((
-                SphereBody::new(0.5),
-                SpherePosition(DVec3::new(x, 0.0, 0.0)),
-                SphereVelocity(v),
-            ))
-            .id()
-    };
-    (spawn(-2.0, DVec3::X), spawn(2.0, DVec3::ZERO))
+    (
+        ball(app, DVec3::new(-2.0, 0.0, 0.0), DVec3::X),
+        ball(app, DVec3::new(2.0, 0.0, 0.0), DVec3::ZERO),
+    )
 }
 
 #[test]
@@ -1123,16 +1128,8 @@ fn regression_a_runaway_body_without_an_entity_is_removed_too() {
 #[test]
 fn spheres_spawned_overlapping_with_no_gravity_move_apart() {
     let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::ZERO));
-    let mut spawn = |x: f64| {
-        app.world_mut()
-            .spawn((
-                SphereBody::new(0.5),
-                SpherePosition(DVec3::new(x, 0.0, 0.0)),
-                SphereVelocity(DVec3::ZERO),
-            ))
-            .id()
-    };
-    let (a, b) = (spawn(0.0), spawn(0.7));
+    let a = ball(&mut app, DVec3::ZERO, DVec3::ZERO);
+    let b = ball(&mut app, DVec3::new(0.7, 0.0, 0.0), DVec3::ZERO);
     run_steps(&mut app, 1);
     assert_eq!(
         app.world()
@@ -1167,18 +1164,10 @@ fn spheres_spawned_overlapping_on_a_floor_move_apart_and_rest() {
         SpherePosition(DVec3::new(0.0, -floor, 0.0)),
         FixedSphere,
     ));
-    let mut spawn = |x: f64| {
-        app.world_mut()
-            .spawn((
-                SphereBody::new(0.5),
-                SpherePosition(DVec3::new(x, 0.5, 0.0)),
-                SphereVelocity(DVec3::ZERO),
-            ))
-            .id()
-    };
     // 0.3 m into each other, side by side on the floor: the pair parts by at most a tenth of
     // the smaller radius (5 cm) a step, so it is apart in six steps.
-    let (a, b) = (spawn(-0.35), spawn(0.35));
+    let a = ball(&mut app, DVec3::new(-0.35, 0.5, 0.0), DVec3::ZERO);
+    let b = ball(&mut app, DVec3::new(0.35, 0.5, 0.0), DVec3::ZERO);
     let depth = |app: &App| 1.0 - (position(app, b) - position(app, a)).length();
     run_steps(&mut app, 4);
     assert!(depth(&app) > 0.05, "apart too soon: {} m deep", depth(&app));

@@ -5,6 +5,8 @@
 //! tenth after, and within a billionth of it), or early enough to pass each other by the end of
 //! it, under every tolerance, with both methods.
 
+mod common;
+
 use proptest::prelude::*;
 use sphere_physics::{
     Settings, SphereDesc, TimeOfImpact, ToiMethod, Tolerance, World, glam::DVec3,
@@ -12,18 +14,8 @@ use sphere_physics::{
 
 const DT: f64 = 1.0 / 60.0;
 
-/// `cases` cases from a fixed seed, so that a run (and CI) repeats bit for bit; set
-/// `PROPTEST_RNG_SEED` to explore other cases.
-fn config(cases: u32) -> ProptestConfig {
-    let mut config = ProptestConfig::with_cases(cases);
-    if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
-        config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x00E1_0D57);
-    }
-    config
-}
-
 proptest! {
-    #![proptest_config(config(1024))]
+    #![proptest_config(crate::common::proptest_config(1024, 0x00E1_0D57))]
     #[test]
     fn a_step_finds_an_impact_exactly_when_its_method_does(
         radii in (0.01..1.0f64, 0.01..1.0f64),

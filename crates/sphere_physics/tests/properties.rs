@@ -4,16 +4,6 @@ mod common;
 use proptest::prelude::*;
 use sphere_physics::{IntegratorKind, Settings, SphereDesc, World, glam::DVec3};
 
-/// `cases` cases from a fixed seed, so that a run (and CI) repeats bit for bit; set
-/// `PROPTEST_RNG_SEED` to explore other cases.
-fn config(cases: u32) -> ProptestConfig {
-    let mut config = ProptestConfig::with_cases(cases);
-    if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
-        config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x5EED_5EED);
-    }
-    config
-}
-
 fn scene() -> impl Strategy<Value = Vec<(f64, f64, f64, f64, f64, f64, f64)>> {
     // Spheres on a grid of spacing 1, each moved by up to 0.1 along (1, 1, 1), so neighbours are
     // at least 1 - 0.2·√3 > 0.65 apart and radii up to 0.32 never overlap at start; random
@@ -34,7 +24,7 @@ fn scene() -> impl Strategy<Value = Vec<(f64, f64, f64, f64, f64, f64, f64)>> {
 }
 
 proptest! {
-    #![proptest_config(config(64))]
+    #![proptest_config(crate::common::proptest_config(64, crate::common::SEED))]
     #[test]
     fn invariants_hold(spheres in scene(), dt in 0.005..0.2f64) {
         let mut world = World::new(Settings::default());
@@ -130,7 +120,7 @@ proptest! {
 proptest! {
     // More cases: the overlaps it checks come from spheres sliding together in piles, which
     // only some scenes make.
-    #![proptest_config(config(512))]
+    #![proptest_config(crate::common::proptest_config(512, crate::common::SEED))]
     /// A step's reported largest overlap is the largest overlap of any pair at its end (the
     /// step finds it from the pairs it tested; the world's check looks at every pair).
     #[test]
@@ -183,7 +173,7 @@ fn strung_scene() -> impl Strategy<Value = Vec<common::Strung>> {
 }
 
 proptest! {
-    #![proptest_config(config(128))]
+    #![proptest_config(crate::common::proptest_config(128, crate::common::SEED))]
     /// Strings among free spheres, with or without gravity, either integrator: no step ends
     /// with two spheres more than 5% of the smaller one's radius into each other while no
     /// collision is deferred (a string's drift is a chord of its arc, so not 0: 3.3% at worst

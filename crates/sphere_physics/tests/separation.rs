@@ -10,16 +10,6 @@ use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
 const DT: f64 = 1.0 / 60.0;
 
-/// `cases` cases from a fixed seed, so that a run (and CI) repeats bit for bit; set
-/// `PROPTEST_RNG_SEED` to explore other cases.
-fn config(cases: u32) -> ProptestConfig {
-    let mut config = ProptestConfig::with_cases(cases);
-    if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
-        config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x5EED_5EED);
-    }
-    config
-}
-
 /// Up to 40 spheres (position in a cube 2 m wide, radius 0.05 to 0.5 m, density 0.5 to 5)
 /// placed with no regard for each other: most overlap, some deep inside bigger ones.
 fn crowd() -> impl Strategy<Value = Vec<(f64, f64, f64, f64, f64)>> {
@@ -65,7 +55,7 @@ fn deepest_beyond_band(world: &World) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(config(64))]
+    #![proptest_config(crate::common::proptest_config(64, crate::common::SEED))]
     /// A crowd placed overlapping at rest: nothing gains a speed, the centre of mass stays,
     /// the step reports the deepest overlap, and within 2 s every pair is apart or touching
     /// (the slowest of these cases takes 52 steps; a sphere at the centre of one ten times its

@@ -1,6 +1,8 @@
 //! Regression tests for the tutorial's admitted flaw: collisions of several spheres at one
 //! instant must share momentum correctly (and, when elastic, keep energy).
 
+mod common;
+
 use sphere_physics::glam::DVec3;
 use sphere_physics::{GroupContact, Settings, SphereDesc, World, resolve, resolve_simultaneous};
 
@@ -203,16 +205,6 @@ mod properties {
         )
     }
 
-    /// `cases` cases from a fixed seed, so that a run (and CI) repeats bit for bit; set
-    /// `PROPTEST_RNG_SEED` to explore other cases.
-    fn config(cases: u32) -> ProptestConfig {
-        let mut config = ProptestConfig::with_cases(cases);
-        if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
-            config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x5EED_5EED);
-        }
-        config
-    }
-
     /// The kinetic energy of the bodies of inverse mass above 0.
     fn energy(inverse: &[f64], v: &[DVec3]) -> f64 {
         v.iter()
@@ -250,7 +242,7 @@ mod properties {
     }
 
     proptest! {
-        #![proptest_config(config(256))]
+        #![proptest_config(crate::common::proptest_config(256, crate::common::SEED))]
         /// Any group of one to eight contacts among 5 bodies (one possibly fixed), one
         /// restitution `e`: the reported impulses are exactly what changed each body's
         /// velocity (`Δv_i / w_i = Σ ±J_c n_c`, so momentum moves only through fixed bodies),
@@ -394,7 +386,7 @@ mod properties {
     }
 
     proptest! {
-        #![proptest_config(config(512))]
+        #![proptest_config(crate::common::proptest_config(512, crate::common::SEED))]
         /// Any group of one to ten contacts among 5 bodies (one possibly fixed at rest), each
         /// contact with its own restitution (0, 1 or between): momentum moves only through the
         /// fixed body, the impulses push, and the kinetic energy is never gained (before the

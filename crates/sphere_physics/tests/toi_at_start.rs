@@ -1,18 +1,10 @@
 //! Pairs that start at (or within the tolerance of) contact: the exact method reports an impact
 //! at 0 exactly when the tolerance calls them touching and they approach, whatever the radii and
 //! the tolerance, right up to the edge of the tolerance band.
+
+mod common;
 use proptest::prelude::*;
 use sphere_physics::{ExactToi, TimeOfImpact, Tolerance, glam::DVec3};
-
-/// `cases` cases from a fixed seed, so that a run (and CI) repeats bit for bit; set
-/// `PROPTEST_RNG_SEED` to explore other cases.
-fn config(cases: u32) -> ProptestConfig {
-    let mut config = ProptestConfig::with_cases(cases);
-    if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
-        config.rng_seed = proptest::test_runner::RngSeed::Fixed(0x5EED_5EED);
-    }
-    config
-}
 
 /// A distance `steps` ulps from the largest distance the tolerance still calls touching.
 fn near_edge(contact: f64, eps: f64, steps: i64) -> f64 {
@@ -37,7 +29,7 @@ fn near_edge(contact: f64, eps: f64, steps: i64) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(config(512))]
+    #![proptest_config(crate::common::proptest_config(512, crate::common::SEED))]
     #[test]
     fn touching_at_start_follows_the_tolerance(
         contact in 1e-3..1e3f64,

@@ -2,11 +2,25 @@
 //! cases it found, the creep allowance, a sheet of spheres over fixed ones, head-on pairs
 //! that must each collide within one step, a pit of spheres dropped into an open box,
 //! spheres among others hanging on strings, a crowd placed overlapping with no gravity, and
-//! the deepest overlap and centre of mass of a world.
+//! the deepest overlap and centre of mass of a world; and the property tests' configuration
+//! from a fixed seed.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
 use sphere_physics::{BodyId, SceneDesc, Settings, SphereDesc, StepStats, World, glam::DVec3};
+
+/// The property tests' usual seed.
+pub const SEED: u64 = 0x5EED_5EED;
+
+/// `cases` cases from the fixed `seed`, so that a run (and CI) repeats bit for bit; set
+/// `PROPTEST_RNG_SEED` to explore other cases.
+pub fn proptest_config(cases: u32, seed: u64) -> proptest::prelude::ProptestConfig {
+    let mut config = proptest::prelude::ProptestConfig::with_cases(cases);
+    if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
+        config.rng_seed = proptest::test_runner::RngSeed::Fixed(seed);
+    }
+    config
+}
 
 /// One sphere as the property draws it: velocity (x, y, z), radius, density, restitution, and
 /// a jitter along (1, 1, 1).

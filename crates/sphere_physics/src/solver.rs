@@ -262,6 +262,10 @@ pub(crate) struct Solver {
     /// solver indices, sorted: each pair's impulse as a change of relative speed per second.
     /// A loaded contact is pressed by at least its load for the rest of the step.
     loads: Vec<(u32, u32, f64)>,
+    /// Where each solver index's loads begin in [`Solver::loads`] (as its contacts' lower
+    /// index; one more entry for the end), so that a press looks among a body's few contacts
+    /// instead of searching them all.
+    load_start: Vec<u32>,
     /// The last resting solve's impulses per second, by the pair's body ids (smaller first),
     /// sorted: the next solve starts from them (a warm start).
     warm: Vec<(crate::BodyId, crate::BodyId, f64)>,

@@ -983,6 +983,23 @@ impl Solver {
         }
         std::mem::swap(&mut self.warm, &mut self.next_warm);
         self.loads.sort_unstable_by_key(|l| (l.0, l.1));
+        debug_assert!(
+            self.loads
+                .windows(2)
+                .all(|w| (w[0].0, w[0].1) != (w[1].0, w[1].1)),
+            "a pair loaded twice"
+        );
+        // Each lower index's loads start where the counts of the lower indices before it end.
+        self.load_start.clear();
+        self.load_start.resize(self.segments.len() + 1, 0);
+        for l in &self.loads {
+            self.load_start[l.0 as usize + 1] += 1;
+        }
+        let mut sum = 0;
+        for start in &mut self.load_start {
+            sum += *start;
+            *start = sum;
+        }
         self.resting = resting;
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
@@ -1044,10 +1061,12 @@ impl Solver {
         if !(bit(&self.loaded, a) && bit(&self.loaded, b)) {
             return own;
         }
-        let key = (a.min(b) as u32, a.max(b) as u32);
-        match self.loads.binary_search_by_key(&key, |l| (l.0, l.1)) {
-            Ok(k) => own.max(self.loads[k].2),
-            Err(_) => own,
+        // The lower index's few loads (each pair has one), among them the pair's if loaded.
+        let (low, high) = (a.min(b), a.max(b) as u32);
+        let loads = &self.loads[self.load_start[low] as usize..self.load_start[low + 1] as usize];
+        match loads.iter().find(|l| l.1 == high) {
+            Some(l) => own.max(l.2),
+            None => own,
         }
     }
 }

@@ -408,13 +408,25 @@ fn compress_exactly(
     let tolerance = 1e-12 * scale;
     // The contacts whose normal speed `lambda` leaves below its bias (beyond rounding of the
     // sum that makes it, relative to its largest term: a light sphere between heavy ones sums
-    // large terms to a small speed).
-    let short = |lambda: &[f64]| -> u64 {
+    // large terms to a small speed). Only the contacts of `set` push (`solve_active` leaves
+    // the rest at 0): the sums run over those, in order, and both at once. (The terms left
+    // out are zeros, which leave a sum as it was, but for the sign of a zero sum: no
+    // comparison below tells the two zeros apart.)
+    let short = |lambda: &[f64], set: u64| -> u64 {
         (0..n)
             .filter(|&i| {
-                let terms = (0..n).map(|j| a[i * n + j] * lambda[j]);
-                let w = b[i] + terms.clone().sum::<f64>();
-                let size = b[i].abs() + terms.map(f64::abs).sum::<f64>();
+                let row = &a[i * n..(i + 1) * n];
+                let (mut sum, mut size) = (-0.0f64, -0.0f64);
+                let mut bits = set;
+                while bits != 0 {
+                    let j = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    let term = row[j] * lambda[j];
+                    sum += term;
+                    size += term.abs();
+                }
+                let w = b[i] + sum;
+                let size = b[i].abs() + size;
                 w < -(tolerance + 1e-12 * size)
             })
             .fold(0, |bits, i| bits | 1 << i)
@@ -436,7 +448,7 @@ fn compress_exactly(
         if !solve_active(a, b, set, matrix, lambda) {
             break;
         }
-        let (pulling, short) = (pulling(lambda), short(lambda));
+        let (pulling, short) = (pulling(lambda), short(lambda, set));
         if pulling == 0 && short == 0 {
             return true;
         }
@@ -453,7 +465,10 @@ fn compress_exactly(
     let sets =
         (1..=n as u32).flat_map(|size| (1..1u64 << n).filter(move |s| s.count_ones() == size));
     for set in sets {
-        if solve_active(a, b, set, matrix, lambda) && pulling(lambda) == 0 && short(lambda) == 0 {
+        if solve_active(a, b, set, matrix, lambda)
+            && pulling(lambda) == 0
+            && short(lambda, set) == 0
+        {
             return true;
         }
     }

@@ -62,6 +62,8 @@ pub(crate) struct EventQueue<T: Timed> {
     scale: f64,
     /// Items waiting in later buckets.
     waiting: usize,
+    /// Items pushed since the last reset.
+    pushed: usize,
 }
 
 impl<T: Timed> Default for EventQueue<T> {
@@ -75,6 +77,7 @@ impl<T: Timed> Default for EventQueue<T> {
             count: 0,
             scale: 0.0,
             waiting: 0,
+            pushed: 0,
         }
     }
 }
@@ -86,6 +89,9 @@ impl<T: Timed> EventQueue<T> {
         let count = (expected / per_bucket.max(1)).clamp(1, MOST_BUCKETS);
         self.chunks.clear();
         self.heads.clear();
+        // Room for the most buckets once, so that a step expecting more than the last
+        // allocates nothing.
+        self.heads.reserve(MOST_BUCKETS);
         self.heads.resize(count, (NONE, 0));
         self.count = count;
         self.current.clear();
@@ -93,6 +99,12 @@ impl<T: Timed> EventQueue<T> {
         self.at = 0;
         self.scale = if span > 0.0 { count as f64 / span } else { 0.0 };
         self.waiting = 0;
+        self.pushed = 0;
+    }
+
+    /// How many items were pushed since the last reset.
+    pub fn pushed(&self) -> usize {
+        self.pushed
     }
 
     fn bucket(&self, time: f64) -> usize {
@@ -108,6 +120,7 @@ impl<T: Timed> EventQueue<T> {
         if self.count == 0 {
             self.reset(0.0, 1, 1);
         }
+        self.pushed += 1;
         let b = self.bucket(item.time());
         if b <= self.at {
             if self.current.len() >= CROWD {

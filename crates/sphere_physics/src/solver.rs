@@ -574,7 +574,10 @@ impl Solver {
         self.settled.clear();
         self.settled_time = f64::NAN;
         self.unbounded = None;
-        self.queue.reset(dt, bodies.len(), 4);
+        // About four events a bucket, as many as the last step pushed (a ball pit's crowd
+        // pushes dozens per body) or one per body, whichever is more.
+        let expected = bodies.len().max(self.queue.pushed());
+        self.queue.reset(dt, expected, 4);
         self.segments.clear();
         self.extras.clear();
         self.kicks_after.clear();

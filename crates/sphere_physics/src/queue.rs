@@ -89,8 +89,8 @@ impl<T: Timed> EventQueue<T> {
         let count = (expected / per_bucket.max(1)).clamp(1, MOST_BUCKETS);
         self.chunks.clear();
         self.heads.clear();
-        // Room for the most buckets once, so that a step expecting more than the last
-        // allocates nothing.
+        // Room for the most buckets' heads once, so that a step expecting more events than
+        // the last does not grow them (its chunks grow with its pushes, as they always did).
         self.heads.reserve(MOST_BUCKETS);
         self.heads.resize(count, (NONE, 0));
         self.count = count;

@@ -410,8 +410,9 @@ fn compress_exactly(
     // sum that makes it, relative to its largest term: a light sphere between heavy ones sums
     // large terms to a small speed). Only the contacts of `set` push (`solve_active` leaves
     // the rest at 0): the sums run over those, in order, and both at once. (The terms left
-    // out are zeros, which leave a sum as it was, but for the sign of a zero sum: no
-    // comparison below tells the two zeros apart.)
+    // out are zeros, the couplings being finite, which leave a sum as it was but for the sign
+    // of a zero sum: no comparison below tells the two zeros apart. A coupling is infinite
+    // only for an inverse mass near the largest f64, whose answers are no answers anyway.)
     let short = |lambda: &[f64], set: u64| -> u64 {
         (0..n)
             .filter(|&i| {

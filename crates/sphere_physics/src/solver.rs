@@ -574,8 +574,8 @@ impl Solver {
         self.settled.clear();
         self.settled_time = f64::NAN;
         self.unbounded = None;
-        // About four events a bucket, as many as the last step pushed (a ball pit's crowd
-        // pushes dozens per body) or one per body, whichever is more.
+        // Four events a bucket, expecting one per body or as many as the last step pushed,
+        // whichever is more (a ball pit's landing crowd pushes dozens per body).
         let expected = bodies.len().max(self.queue.pushed());
         self.queue.reset(dt, expected, 4);
         self.segments.clear();

@@ -1,12 +1,14 @@
 //! The step's results, bit for bit: a landing ball pit, a shower onto a dome and an elastic
-//! gas, each stepped through the public API, digested (every step's collision and
-//! time-of-impact counts, and every sphere's final position and velocity, to the bit) and
-//! compared with the digest recorded here.
+//! gas, each stepped through the public API, digested (every step's collision counts and
+//! largest overlap, and every sphere's final position and velocity, to the bit) and compared
+//! with the digest recorded here. (Not the times of impact computed: a change for speed may
+//! spare some.)
 //!
 //! Changes made for speed are meant to leave every result the same, bit for bit (the speed
-//! history's "the same results bit for bit"); this test holds them to it, over the paths a
-//! landing crowd takes (groups solved together, joins at one instant, the resting solve, the
-//! fallback) as well as the shower's and the gas's. A change meant to alter the physics
+//! history's "the same results bit for bit"); this test holds them to it in scenes that take
+//! the step's many paths: a landing crowd's (impacts solved together and joined at one
+//! instant, the resting solve, and the collision budget's fallback, which the pit is checked
+//! to reach) as well as the shower's and the gas's. A change meant to alter the physics
 //! changes these digests: record the new ones with the change, and say why in its message
 //! (run `cargo test -p sphere_physics --test bit_for_bit -- --nocapture` to print them).
 //! Every operation the step uses is IEEE 754's (`+ - * /`, square roots, comparisons; no fused
@@ -47,7 +49,6 @@ fn digest(mut world: World, steps: u32) -> (u64, u32) {
         digest.add(u64::from(stats.collisions));
         digest.add(u64::from(stats.resting_contacts));
         digest.add(u64::from(stats.collisions_deferred));
-        digest.add(stats.toi_tests);
         digest.add(stats.max_overlap.to_bits());
         digest.add(u64::from(stats.fell_back));
         fell_back += u32::from(stats.fell_back);
@@ -82,7 +83,7 @@ fn a_landing_ball_pit_steps_the_same_bit_for_bit() {
         fell_back > 0,
         "the pit no longer spends its collision budget"
     );
-    check("pit", got, 0x32f1_8912_3d0f_12f6);
+    check("pit", got, 0xc17b_2de0_b700_d2a2);
 }
 
 /// 2000 spheres of radius 0.05 (restitution 0.5) raining onto a fixed dome (`sphere_bench`'s
@@ -103,7 +104,7 @@ fn a_shower_steps_the_same_bit_for_bit() {
     .unwrap()
     .build()
     .unwrap();
-    check("shower", digest(world, 60).0, 0xa1a7_b338_65c0_7595);
+    check("shower", digest(world, 60).0, 0x818e_59c7_bc8a_6311);
 }
 
 /// 1000 spheres at 1 m/s in a box of six fixed wall spheres, elastic, no gravity.
@@ -117,5 +118,5 @@ fn a_gas_steps_the_same_bit_for_bit() {
     .unwrap()
     .build()
     .unwrap();
-    check("gas", digest(world, 60).0, 0xdaf8_3068_e7bf_9d2d);
+    check("gas", digest(world, 60).0, 0xe3a9_e2f1_a13e_a37d);
 }

@@ -1061,7 +1061,8 @@ impl Solver {
         if !(bit(&self.loaded, a) && bit(&self.loaded, b)) {
             return own;
         }
-        // The lower index's few loads (each pair has one), among them the pair's if loaded.
+        // The lower index's few loads (a pair has at most one), among them the pair's if
+        // loaded.
         let (low, high) = (a.min(b), a.max(b) as u32);
         let loads = &self.loads[self.load_start[low] as usize..self.load_start[low + 1] as usize];
         match loads.iter().find(|l| l.1 == high) {

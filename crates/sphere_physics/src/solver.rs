@@ -358,6 +358,26 @@ pub(crate) struct Solver {
     /// Whether no dynamic body accelerates this step (no gravity, no applied force): then
     /// overlaps left at its end are moved apart (see [`Solver::separate`]).
     nothing_accelerates: bool,
+    /// Re-queries within one instant (see [`Solver::requery_touched`]): the instant's stamp,
+    /// and each segment's stamp when it was last queried in full (its candidates then are
+    /// `candidate_cache[range]`, valid while the stamps match).
+    stamp: u32,
+    stamp_time: f64,
+    query_stamps: Vec<u32>,
+    cache_ranges: Vec<(u32, u32)>,
+    candidate_cache: Vec<u32>,
+    /// Segments changed again at the instant after their query in full there: their pairs
+    /// have been tested only for impacts at that instant, the rest waits for
+    /// [`Solver::flush_dirty`] (one bit per segment, and their list).
+    dirty: Vec<u32>,
+    dirty_bits: Vec<u64>,
+    /// Scratch: the touched segments queried in full at the instant already.
+    repeats: Vec<u32>,
+    /// While testing a pair with a dirty body: impacts after this are not queued (its query
+    /// in full will find them), else infinite.
+    queue_until: f64,
+    /// Whether queries in full keep their candidates (see [`Solver::keep_candidates`]).
+    caching: bool,
 }
 
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
@@ -574,6 +594,7 @@ impl Solver {
         self.settled.clear();
         self.settled_time = f64::NAN;
         self.unbounded = None;
+        self.queue_until = f64::INFINITY;
         // Four events a bucket, expecting one per body or as many as the last step pushed,
         // whichever is more (a ball pit's landing crowd pushes dozens per body).
         let expected = bodies.len().max(self.queue.pushed());
@@ -811,9 +832,11 @@ impl Solver {
         (self.pairs, self.asked_pairs) = (pairs, asked);
         (self.broad, self.boxes) = (broad, boxes);
         laps.lap(&mut self.profile.first_pass);
+        self.start_stamps();
         if !self.resting.is_empty() {
             self.add_guards(ctx);
             self.solve_resting(ctx, stats);
+            self.caching = !self.strings && ctx.toi.is_none();
             self.requery_touched(0.0, ctx, stats);
         } else {
             self.warm.clear();
@@ -834,7 +857,21 @@ impl Solver {
         let share = settings.max_collisions_per_body.saturating_mul(BODY_SHARE);
         // Events closer in time than this are one simultaneous group.
         let simultaneity = settings.tolerance.epsilon() * dt;
-        while let Some(event) = self.queue.pop() {
+        loop {
+            // The instant of the dirty segments ends (or the budget runs out): their pairs are
+            // tested in full now, before any later impact is taken.
+            if !self.dirty.is_empty()
+                && (events >= budget
+                    || self
+                        .queue
+                        .peek()
+                        .is_none_or(|next| next.time != self.stamp_time))
+            {
+                self.flush_dirty(ctx, stats);
+            }
+            let Some(event) = self.queue.pop() else {
+                break;
+            };
             if self.unbounded.is_some() {
                 break;
             }
@@ -945,6 +982,7 @@ impl Solver {
             if let Some(next) = self.queue.peek() {
                 self.prefetch_event(&next);
             }
+            self.caching = !self.strings && ctx.toi.is_none() && !self.instant.is_empty();
             self.requery_touched(event.time, ctx, stats);
         }
 
@@ -1026,9 +1064,162 @@ impl Solver {
             .fold(0.0, f64::max)
     }
 
-    /// Tests every pair involving a body in `touched` (all dynamic, all just changed) once,
-    /// from time `t`, after moving their boxes in the broad phase.
+    /// Starts the step's stamps: no segment has been queried at any instant of it.
+    fn start_stamps(&mut self) {
+        let n = self.segments.len();
+        if self.query_stamps.len() < n {
+            self.query_stamps.resize(n, 0);
+            self.cache_ranges.resize(n, (0, 0));
+        }
+        let words = n.div_ceil(64);
+        if self.dirty_bits.len() < words {
+            self.dirty_bits.resize(words, 0);
+        }
+        // (A step refused midway may leave some.)
+        for &k in &self.dirty {
+            if let Some(word) = self.dirty_bits.get_mut(k as usize / 64) {
+                *word &= !(1 << (k % 64));
+            }
+        }
+        self.dirty.clear();
+        self.new_stamp(f64::NAN);
+    }
+
+    #[inline(always)]
+    fn new_stamp(&mut self, t: f64) {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.query_stamps.fill(0);
+            self.stamp = 1;
+        }
+        self.stamp_time = t;
+        self.candidate_cache.clear();
+    }
+
+    fn is_dirty(&self, m: usize) -> bool {
+        bit(&self.dirty_bits, m)
+    }
+
+    /// Tests every pair involving a body in `touched` (all dynamic, all just changed) from
+    /// time `t`.
+    ///
+    /// A body queried in full at this same instant already (in a pile, a resting impact's
+    /// bodies are solved again and again at its instant as the load spreads: seven re-queries
+    /// in ten in a landing pit) is only tested against its candidates of then for impacts at
+    /// this instant, the only ones that can change what happens at it: any pair touching it
+    /// now was among them (every box holds its sphere at this instant). It is marked dirty,
+    /// and queried in full once, when the instant ends ([`Solver::flush_dirty`]). A pair with
+    /// a dirty body is likewise tested only for impacts at this instant.
+    #[inline(always)]
     fn requery_touched(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        if self.strings || ctx.toi.is_some() {
+            self.requery_full(t, ctx, stats);
+            return;
+        }
+        if t != self.stamp_time {
+            debug_assert!(
+                self.dirty.is_empty(),
+                "dirty segments left at a past instant"
+            );
+            self.new_stamp(t);
+        }
+        let (stamps, stamp) = (&self.query_stamps, self.stamp);
+        if self.touched.iter().any(|&k| stamps[k as usize] == stamp) {
+            self.requery_again(t, ctx, stats);
+        } else {
+            self.requery_full(t, ctx, stats);
+        }
+    }
+
+    /// [`Solver::requery_touched`] when some touched bodies were queried in full at this
+    /// instant already.
+    #[inline(never)]
+    fn requery_again(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        let (stamps, stamp) = (&self.query_stamps, self.stamp);
+        let mut repeats = std::mem::take(&mut self.repeats);
+        repeats.clear();
+        self.touched.retain(|&k| {
+            let repeat = stamps[k as usize] == stamp;
+            if repeat {
+                repeats.push(k);
+            }
+            !repeat
+        });
+        for &k in &repeats {
+            if !self.is_dirty(k as usize) {
+                self.dirty_bits[k as usize / 64] |= 1 << (k % 64);
+                self.dirty.push(k);
+            }
+        }
+        self.requery_full(t, ctx, stats);
+        let until = std::mem::replace(&mut self.queue_until, t);
+        for &k in &repeats {
+            let k = k as usize;
+            let (start, len) = self.touching_candidates(k, t, ctx);
+            for at in start..start + len {
+                let m = self.candidate_cache[at] as usize;
+                // Touched bodies queried in full test their pairs with this one; of two
+                // dirty ones, the first.
+                if self.is_touched(m) && (!self.is_dirty(m) || m < k) {
+                    continue;
+                }
+                self.test_pair(k.min(m), k.max(m), t, ctx, stats);
+            }
+        }
+        self.queue_until = until;
+        // Back in the list, so that their marks are cleared with the others'.
+        self.touched.extend_from_slice(&repeats);
+        self.repeats = repeats;
+    }
+
+    /// Body `k`'s candidates kept at this instant that touch it now, as a range of
+    /// [`Solver::candidate_cache`]: only a pair touching now can meet now (one missed near
+    /// the margin is found when the instant ends). Sifted from all its candidates the first
+    /// time they are asked for (positions at the instant do not change within it).
+    fn touching_candidates(&mut self, k: usize, t: f64, ctx: &StepContext<'_>) -> (usize, usize) {
+        const SIFTED: u32 = 1 << 31;
+        let (start, len) = self.cache_ranges[k];
+        let (start, mut len) = (start as usize, len as usize);
+        if len & SIFTED as usize != 0 {
+            return (start, len & !(SIFTED as usize));
+        }
+        let sk = self.segments[k];
+        let at = sk.position_at(t);
+        let mut kept = 0;
+        for i in start..start + len {
+            let m = self.candidate_cache[i] as usize;
+            let sm = &self.segments[m];
+            let near = (sk.radius() + sm.radius() + 4.0 * contact_band(&sk, sm, ctx.settings))
+                * (1.0 + 1e-6);
+            if m != k && (sm.position_at(t) - at).length_squared() <= near * near {
+                self.candidate_cache[start + kept] = m as u32;
+                kept += 1;
+            }
+        }
+        len = kept;
+        self.cache_ranges[k] = (start as u32, len as u32 | SIFTED);
+        (start, len)
+    }
+
+    /// Queries the dirty segments in full (see [`Solver::requery_touched`]), at the instant
+    /// they were changed.
+    fn flush_dirty(&mut self, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        self.clear_touched();
+        let dirty = std::mem::take(&mut self.dirty);
+        for &k in &dirty {
+            self.dirty_bits[k as usize / 64] &= !(1 << (k % 64));
+            self.touch(k);
+        }
+        self.dirty = dirty;
+        self.dirty.clear();
+        let t = self.stamp_time;
+        self.caching = true;
+        self.requery_full(t, ctx, stats);
+    }
+
+    /// Tests every pair involving a body in `touched` once, from time `t`, after moving their
+    /// boxes in the broad phase; keeps each body's candidates for the instant.
+    fn requery_full(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
             self.broad.update(k, &self.boxes[k]);
@@ -1056,18 +1247,35 @@ impl Solver {
                     &mut candidates,
                     &mut partner_candidates,
                 );
+                self.keep_candidates(k, &candidates);
+                self.keep_candidates(l, &partner_candidates);
                 self.test_candidates(k, &candidates, t, ctx, stats);
                 self.test_candidates(l, &partner_candidates, t, ctx, stats);
                 ti += 2;
             } else {
                 self.broad
                     .collect_overlapping(k, &self.boxes, &mut candidates);
+                self.keep_candidates(k, &candidates);
                 self.test_candidates(k, &candidates, t, ctx, stats);
                 ti += 1;
             }
         }
         self.candidates = candidates;
         self.partner_candidates = partner_candidates;
+    }
+
+    /// Keeps `candidates` as body `k`'s at the current instant (see
+    /// [`Solver::requery_touched`]), when [`Solver::caching`]: at an instant where a resting
+    /// contact took an impulse (a pile's loads spread through such instants; a shower's rain
+    /// seldom meets anything twice at one instant, and is spared the copies), and after the
+    /// resting solve.
+    fn keep_candidates(&mut self, k: usize, candidates: &[u32]) {
+        if !self.caching {
+            return;
+        }
+        self.query_stamps[k] = self.stamp;
+        self.cache_ranges[k] = (self.candidate_cache.len() as u32, candidates.len() as u32);
+        self.candidate_cache.extend_from_slice(candidates);
     }
 
     /// Tests touched body `k` against each of its `candidates` (a pair of touched bodies once;
@@ -1136,7 +1344,8 @@ impl Solver {
     /// Tests the pair of body `k` and its candidate `m` from `k`'s [`Side`], unless `m` is
     /// touched and comes first (the pair is tested from `m`'s side). With `kept`, the glance
     /// is known not to dismiss the pair (`kept_by_glances` said so): it goes straight to the
-    /// full test.
+    /// full test. A dirty `m` is tested only for an impact at this instant (see
+    /// [`Solver::requery_touched`]).
     #[inline(always)]
     fn glance_from(
         &mut self,
@@ -1147,10 +1356,17 @@ impl Solver {
         ctx: &StepContext<'_>,
         stats: &mut StepStats,
     ) {
+        let t = side.t;
+        if !self.dirty.is_empty() && self.is_dirty(m) {
+            // Only for an impact at this instant (see `requery_touched`).
+            let until = std::mem::replace(&mut self.queue_until, t);
+            self.test_pair(k.min(m), k.max(m), t, ctx, stats);
+            self.queue_until = until;
+            return;
+        }
         if m <= k && self.is_touched(m) {
             return;
         }
-        let t = side.t;
         let (i, j) = (k.min(m), k.max(m));
         let glance = side.glance(&self.segments[m]);
         // Seen from the first body of the pair: the same numbers, negated if `k` is the
@@ -1795,6 +2011,9 @@ impl Solver {
                     Some(catch) => time = catch,
                     None => return,
                 }
+            }
+            if time > self.queue_until {
+                return;
             }
             self.queue.push(Event {
                 time,

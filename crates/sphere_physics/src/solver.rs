@@ -359,8 +359,8 @@ pub(crate) struct Solver {
     /// overlaps left at its end are moved apart (see [`Solver::separate`]).
     nothing_accelerates: bool,
     /// Re-queries within one instant (see [`Solver::requery_touched`]): the instant's stamp,
-    /// and each segment's stamp when it was last queried in full (its candidates then are
-    /// `candidate_cache[range]`, valid while the stamps match).
+    /// and each segment's stamp when it was last queried in full while [`Solver::caching`]
+    /// (its candidates then are `candidate_cache[range]`, valid while the stamps match).
     stamp: u32,
     stamp_time: f64,
     query_stamps: Vec<u32>,
@@ -858,16 +858,21 @@ impl Solver {
         // Events closer in time than this are one simultaneous group.
         let simultaneity = settings.tolerance.epsilon() * dt;
         loop {
-            // The instant of the dirty segments ends (or the budget runs out): their pairs are
-            // tested in full now, before any later impact is taken.
-            if !self.dirty.is_empty()
-                && (events >= budget
-                    || self
-                        .queue
-                        .peek()
-                        .is_none_or(|next| next.time != self.stamp_time))
-            {
-                self.flush_dirty(ctx, stats);
+            // The instant of the dirty segments ends: their pairs are tested in full now,
+            // before any later impact is taken (the gathering below stops short of later
+            // impacts while any body is dirty). When the budget has run out, the fallback
+            // takes every pair from here (their boxes must be in place for it), or the rest
+            // is deferred: their impacts are not sought again.
+            if !self.dirty.is_empty() {
+                if events >= budget {
+                    self.drop_dirty();
+                } else if self
+                    .queue
+                    .peek()
+                    .is_none_or(|next| next.time != self.stamp_time)
+                {
+                    self.flush_dirty(ctx, stats);
+                }
             }
             let Some(event) = self.queue.pop() else {
                 break;
@@ -894,7 +899,9 @@ impl Solver {
             self.group.clear();
             self.group.push(event);
             while let Some(next) = self.queue.peek() {
-                if next.time > event.time + simultaneity {
+                if next.time > event.time + simultaneity
+                    || (next.time != event.time && !self.dirty.is_empty())
+                {
                     break;
                 }
                 self.queue.pop();
@@ -938,6 +945,12 @@ impl Solver {
                     stats.collisions_deferred = stats
                         .collisions_deferred
                         .saturating_add(component.len() as u32);
+                    // Not queued again at this instant while neither body changes (a dirty
+                    // body's query in full would find them again, and count them twice).
+                    for e in component {
+                        self.settled
+                            .push(Settled::now(&self.versions, e.a as usize, e.b as usize));
+                    }
                     continue;
                 }
                 if !self.pushes.is_empty()
@@ -1217,6 +1230,17 @@ impl Solver {
         self.requery_full(t, ctx, stats);
     }
 
+    /// Puts the dirty segments' boxes in the broad phase and forgets them, their pairs not
+    /// tested in full (the collision budget has run out: see the event loop).
+    fn drop_dirty(&mut self) {
+        for i in 0..self.dirty.len() {
+            let k = self.dirty[i] as usize;
+            self.dirty_bits[k / 64] &= !(1 << (k % 64));
+            self.broad.update(k, &self.boxes[k]);
+        }
+        self.dirty.clear();
+    }
+
     /// Tests every pair involving a body in `touched` once, from time `t`, after moving their
     /// boxes in the broad phase; keeps each body's candidates for the instant.
     fn requery_full(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
@@ -1267,8 +1291,8 @@ impl Solver {
     /// Keeps `candidates` as body `k`'s at the current instant (see
     /// [`Solver::requery_touched`]), when [`Solver::caching`]: at an instant where a resting
     /// contact took an impulse (a pile's loads spread through such instants; a shower's rain
-    /// seldom meets anything twice at one instant, and is spared the copies), and after the
-    /// resting solve.
+    /// seldom meets anything twice at one instant, and is spared the copies), after the
+    /// resting solve, and in the queries of dirty segments at their instant's end.
     fn keep_candidates(&mut self, k: usize, candidates: &[u32]) {
         if !self.caching {
             return;

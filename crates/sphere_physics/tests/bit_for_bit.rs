@@ -83,7 +83,7 @@ fn a_landing_ball_pit_steps_the_same_bit_for_bit() {
         fell_back > 0,
         "the pit no longer spends its collision budget"
     );
-    check("pit", got, 0x13a4_ca23_f649_f4ae);
+    check("pit", got, 0x8fe9_727d_cd60_bf63);
 }
 
 /// 2000 spheres of radius 0.05 (restitution 0.5) raining onto a fixed dome (`sphere_bench`'s

@@ -443,14 +443,26 @@ fn compress_exactly(
     // pile, where a resting impact joins the contacts it presses on (at rest, each pressed
     // already at this instant), nearly all of them push: guessing only the approaching ones
     // took 2.8 solves a group in a landing pit of 1000 and this guess 1.07, where the search
-    // below tries dozens. It may cycle, so it gets a few tries.
+    // below tries dozens. It may cycle, so it gets a few tries. Contacts at rest that
+    // duplicate one another (a sphere pressed between two fixed ones on a line) make that
+    // guess singular: then the approaching ones are guessed instead.
     let mut set = (0..n)
         .filter(|&i| b[i] < tolerance)
         .fold(0u64, |bits, i| bits | 1 << i);
-    for _ in 0..=n {
+    let approaching = (0..n)
+        .filter(|&i| b[i] < 0.0)
+        .fold(0u64, |bits, i| bits | 1 << i);
+    let mut first = true;
+    for _ in 0..=n + 1 {
         if !solve_active(a, b, set, matrix, lambda) {
+            if first && set != approaching {
+                first = false;
+                set = approaching;
+                continue;
+            }
             break;
         }
+        first = false;
         let (pulling, short) = (pulling(lambda), short(lambda, set));
         if pulling == 0 && short == 0 {
             return true;

@@ -1089,13 +1089,16 @@ impl Solver {
             self.dirty_bits.resize(words, 0);
         }
         // (A step refused midway may leave some.)
+        self.forget_dirty();
+        self.new_stamp(f64::NAN);
+    }
+
+    /// Clears the dirty segments' marks and list.
+    fn forget_dirty(&mut self) {
         for &k in &self.dirty {
-            if let Some(word) = self.dirty_bits.get_mut(k as usize / 64) {
-                *word &= !(1 << (k % 64));
-            }
+            self.dirty_bits[k as usize / 64] &= !(1 << (k % 64));
         }
         self.dirty.clear();
-        self.new_stamp(f64::NAN);
     }
 
     #[inline(always)]
@@ -1218,13 +1221,10 @@ impl Solver {
     /// they were changed.
     fn flush_dirty(&mut self, ctx: &StepContext<'_>, stats: &mut StepStats) {
         self.clear_touched();
-        let dirty = std::mem::take(&mut self.dirty);
-        for &k in &dirty {
-            self.dirty_bits[k as usize / 64] &= !(1 << (k % 64));
-            self.touch(k);
+        for i in 0..self.dirty.len() {
+            self.touch(self.dirty[i]);
         }
-        self.dirty = dirty;
-        self.dirty.clear();
+        self.forget_dirty();
         let t = self.stamp_time;
         self.caching = true;
         self.requery_full(t, ctx, stats);
@@ -1233,12 +1233,10 @@ impl Solver {
     /// Puts the dirty segments' boxes in the broad phase and forgets them, their pairs not
     /// tested in full (the collision budget has run out: see the event loop).
     fn drop_dirty(&mut self) {
-        for i in 0..self.dirty.len() {
-            let k = self.dirty[i] as usize;
-            self.dirty_bits[k / 64] &= !(1 << (k % 64));
-            self.broad.update(k, &self.boxes[k]);
+        for &k in &self.dirty {
+            self.broad.update(k as usize, &self.boxes[k as usize]);
         }
-        self.dirty.clear();
+        self.forget_dirty();
     }
 
     /// Tests every pair involving a body in `touched` once, from time `t`, after moving their

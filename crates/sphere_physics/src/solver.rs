@@ -1697,24 +1697,31 @@ impl Solver {
             let taut = self.taut_at(k, t);
             self.local_taut.push(taut);
             let strung = self.strung(k).copied();
-            let segment = &mut self.segments[k];
-            segment.advance_to(t);
+            self.segments[k].advance_to(t);
             self.local_inverse_masses
                 .push(self.extras[self.order[k] as usize].inverse_mass);
             let mut velocity = match strung {
                 // Bent for later, slack now: it moves freely.
                 Some(strung) if strung.taut && !taut => strung.free_velocity,
-                _ => segment.velocity,
+                _ => self.segments[k].velocity,
             };
             if let (Some(Strung { tether, .. }), true) = (strung, taut) {
                 // The drift is a chord of the string's sphere; the sphere itself is on that
                 // sphere, moving tangent to it. Put it there (a move of at most the chord's
-                // sagitta, ~(v·dt)²/8L) and drop the drift's radial part (the string's pull).
-                let r = segment.position - tether.anchor;
+                // sagitta, ~(v·dt)²/8L), but no deeper into a sphere it strikes now than it
+                // touches it, and drop the drift's radial part (the string's pull).
+                let r = self.segments[k].position - tether.anchor;
                 let distance = r.length();
                 if distance > 0.0 {
                     let normal = r / distance;
-                    segment.position = tether.anchor + normal * tether.length;
+                    let onto = normal * (tether.length - distance);
+                    let allowed = self.move_allowed(k, onto, events, t);
+                    let segment = &mut self.segments[k];
+                    segment.position = if allowed >= 1.0 {
+                        tether.anchor + normal * tether.length
+                    } else {
+                        segment.position + onto * allowed
+                    };
                     velocity -= normal * velocity.dot(normal);
                 }
             }
@@ -1872,6 +1879,41 @@ impl Solver {
             }
             self.record_collision((a, b), t, c.normal, impulse, resting, ctx);
         }
+    }
+
+    /// How much of `onto` (a move of segment `k`, advanced to `t`, onto its string's sphere)
+    /// it may take, from 0 to 1: all of it, unless that would take it deeper into a sphere it
+    /// strikes among `events` than it is now (or into it, from touching). The drift it struck
+    /// with is a chord, inside the string's length by up to the chord's sagitta; put on its
+    /// string straight towards a sphere outside the string's reach, it would sink into that
+    /// sphere by as much, and a pair that parts slowly (restitution 0) ended the step so:
+    /// a sphere on a string of 0.56 m turning 0.9 rad a step ended one 1.5 cm (15% of its
+    /// radius) into a light free sphere it had struck 2.5 ms before the step's end.
+    fn move_allowed(&self, k: usize, onto: DVec3, events: &[Event], t: f64) -> f64 {
+        let segment = &self.segments[k];
+        let mut allowed = 1.0f64;
+        for e in events {
+            let j = match (e.a as usize, e.b as usize) {
+                (a, b) if a == k => b,
+                (a, b) if b == k => a,
+                _ => continue,
+            };
+            let other = &self.segments[j];
+            let d = segment.position - other.position_at(t);
+            let along = d.dot(onto);
+            if along >= 0.0 {
+                continue;
+            }
+            // |d + s·onto| ≥ m for s up to the smaller root (written without cancellation).
+            let reach = segment.radius() + other.radius();
+            let dd = d.length_squared();
+            let room = dd - dd.min(reach * reach);
+            let discriminant = along * along - onto.length_squared() * room;
+            if discriminant >= 0.0 {
+                allowed = allowed.min(room / (discriminant.sqrt() - along));
+            }
+        }
+        allowed.max(0.0)
     }
 
     /// Solves a group's contacts (in [`Solver::local_contacts`]) once more, restitution 0,

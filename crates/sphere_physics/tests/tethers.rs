@@ -330,7 +330,9 @@ fn regression_set_position_beyond_the_string_is_an_error() {
 /// A step's reported largest overlap is the overlap at the positions the step leaves its
 /// bodies in, strings pulled taut included: equal to the bit to the world's own check of every
 /// pair, step after step of swinging cradles whose balls overlap by a rounding error as they
-/// pass the swing on (so the overlap is worked out for most steps).
+/// pass the swing on (so the overlap is worked out for many steps: 220 and 34 of the 600
+/// since a struck sphere is no longer put on its string's sphere deeper into the ball it
+/// strikes, 482 and 479 before).
 #[test]
 fn the_reported_overlap_is_at_the_taut_positions() {
     for name in ["newtons_cradle", "newtons_cradle_two"] {
@@ -346,7 +348,7 @@ fn the_reported_overlap_is_at_the_taut_positions() {
             overlapping += usize::from(actual > 0.0);
         }
         assert!(
-            overlapping > 300,
+            overlapping > 30,
             "{name}: {overlapping} steps with an overlap"
         );
     }

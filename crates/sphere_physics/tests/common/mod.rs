@@ -13,8 +13,12 @@ use sphere_physics::{BodyId, SceneDesc, Settings, SphereDesc, StepStats, World, 
 pub const SEED: u64 = 0x5EED_5EED;
 
 /// `cases` cases from the fixed `seed`, so that a run (and CI) repeats bit for bit; set
-/// `PROPTEST_RNG_SEED` to explore other cases.
+/// `PROPTEST_RNG_SEED` to explore other cases, and `PROPTEST_CASES` to run that many instead.
 pub fn proptest_config(cases: u32, seed: u64) -> proptest::prelude::ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(cases);
     let mut config = proptest::prelude::ProptestConfig::with_cases(cases);
     if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
         config.rng_seed = proptest::test_runner::RngSeed::Fixed(seed);

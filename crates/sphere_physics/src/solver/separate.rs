@@ -17,9 +17,12 @@ use crate::Body;
 use crate::broad_phase::Aabb;
 
 /// How many times the separation goes over its pairs at most in a step (Gauss–Seidel, each
-/// pair moved apart in turn with what the pairs before it did): a lone pair needs one, a
-/// crowd's pairs undo each other's moves in part.
-const SEPARATION_SWEEPS: u32 = 8;
+/// pair moved apart in turn with what the pairs before it did; they stop once nothing moves):
+/// a lone pair needs one, a crowd's pairs undo each other's moves in part. A light sphere
+/// caged between heavy ones that overlap it from nearly opposite sides is freed only as they
+/// move apart, by a share as small as the mass ratio each sweep: with 8 sweeps such a cage
+/// (a ratio of 290) took 289 steps, with 32 it takes 71.
+const SEPARATION_SWEEPS: u32 = 32;
 
 impl Solver {
     /// Moves apart the pairs that end the step overlapping by more than their contact band,

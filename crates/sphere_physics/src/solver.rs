@@ -1851,9 +1851,6 @@ impl Solver {
                 }
             }
         }
-        if self.local_taut.contains(&true) {
-            self.stop_closing_chords(t, ctx);
-        }
         for i in 0..self.local_bodies.len() {
             let (k, velocity) = (self.local_bodies[i] as usize, self.local_velocities[i]);
             self.set_velocity(k, velocity, t, ctx);
@@ -1881,97 +1878,6 @@ impl Solver {
                     .record(a as u32, b as u32, moving(&self.segments));
             }
             self.record_collision((a, b), t, c.normal, impulse, resting, ctx);
-        }
-    }
-
-    /// After a group's solve with a taut string (at the swing's tangent): the drifts must not
-    /// close either. A taut sphere's drift over the rest of the step is a chord, which turns
-    /// in towards the anchor; a sphere struck from the anchor's side, solved at the tangent,
-    /// parted from it and then drifted back into it (the second impact at that instant, solved
-    /// at the tangent again, gives nothing), and a heavy sphere following a light one it had
-    /// struck onto a short string ended the step 6.4 cm into it. So where the chords close, the
-    /// group is solved again, restitution 0, from the drifts, each string holding its sphere
-    /// no farther out than its chord, and the change is put on the velocities.
-    fn stop_closing_chords(&mut self, t: f64, ctx: &StepContext<'_>) {
-        let rest = ctx.dt - t;
-        if rest <= 0.0 {
-            return;
-        }
-        // Each local body's drift less its velocity (its chord's bend; none without a string).
-        self.local_shifts.clear();
-        for i in 0..self.local_bodies.len() {
-            let k = self.local_bodies[i] as usize;
-            let velocity = self.local_velocities[i];
-            let bend = match self.strung(k) {
-                Some(strung) if self.local_taut[i] => {
-                    chord(self.segments[k].position, velocity, strung.tether, rest).0 - velocity
-                }
-                _ => DVec3::ZERO,
-            };
-            self.local_shifts.push(bend);
-        }
-        let velocities = &self.local_velocities;
-        let shifts = &self.local_shifts;
-        let drift = |i: usize| velocities[i] + shifts.get(i).copied().unwrap_or(DVec3::ZERO);
-        // A taut sphere's pull towards its anchor (centripetal: v²/L), none for the others.
-        let pull = |i: usize| match (self.local_bodies.get(i), self.local_taut.get(i)) {
-            (Some(&k), Some(true)) => match self.strung(k as usize) {
-                Some(strung) => {
-                    let r = self.segments[k as usize].position - strung.tether.anchor;
-                    let v = velocities[i];
-                    let radial = r.normalize_or_zero();
-                    let tangent = v - radial * v.dot(radial);
-                    -radial * (tangent.length_squared() / strung.tether.length)
-                }
-                None => DVec3::ZERO,
-            },
-            _ => DVec3::ZERO,
-        };
-        let closing = self.local_contacts.iter().any(|c| {
-            if c.string {
-                return false;
-            }
-            let (va, vb) = (drift(c.a), drift(c.b));
-            if (vb - va).dot(c.normal) >= -1e-12 * (va.length() + vb.length()) {
-                return false;
-            }
-            // The chords close; do the swings? Where the pair's distance curves away (a
-            // sphere sliding past along its swing, the chord dipping towards what it
-            // touches on the anchor's side) they part, and the chord's dip is let be.
-            let (sa, sb) = (
-                &self.segments[self.local_bodies[c.a] as usize],
-                &self.segments[self.local_bodies[c.b] as usize],
-            );
-            let distance = (sb.position - sa.position).length();
-            let relative = velocities[c.b] - velocities[c.a];
-            let along = relative.dot(c.normal);
-            let across = relative.length_squared() - along * along;
-            let curving = (pull(c.b) - pull(c.a)).dot(c.normal) + across / distance;
-            // They meet again within the rest of the step: d'' < 0, and 2d'/|d''| < rest.
-            curving < 0.0 && 2.0 * along.max(0.0) < -curving * rest
-        });
-        if !closing {
-            return;
-        }
-        for (velocity, bend) in self.local_velocities.iter_mut().zip(&self.local_shifts) {
-            *velocity += *bend;
-        }
-        for c in &mut self.local_contacts {
-            if c.string {
-                // Pulls (it cannot push) as far in as the chord turns.
-                c.bias = -self.local_velocities[c.a].dot(c.normal);
-            }
-        }
-        self.resolve_local_again();
-        for (impulse, first) in self
-            .local_impulses
-            .iter_mut()
-            .zip(&self.local_first_impulses)
-        {
-            *impulse += first;
-        }
-        for (velocity, bend) in self.local_velocities.iter_mut().zip(&self.local_shifts) {
-            *velocity -= *bend;
         }
     }
 

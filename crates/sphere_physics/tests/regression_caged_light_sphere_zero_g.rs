@@ -10,6 +10,9 @@
 //! cases) was still 0.14 mm deep after the test's 2 s, apart after 289 steps. With 32 sweeps
 //! (they stop as soon as nothing moves) it is apart after 71.
 
+mod common;
+
+use common::{centre_of_mass, deepest_beyond_band};
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
 /// Position, radius and density of each sphere, as the property test drew them.
@@ -210,37 +213,20 @@ fn a_caged_light_sphere_comes_apart_within_two_seconds() {
             )
             .unwrap();
     }
-    let mass: f64 = world.bodies().iter().map(|b| b.mass()).sum();
-    let centre = |world: &World| {
-        world
-            .bodies()
-            .iter()
-            .map(|b| b.position() * b.mass())
-            .sum::<DVec3>()
-            / mass
-    };
-    let start = centre(&world);
-    let deepest = |world: &World| {
-        let bodies = world.bodies();
-        let mut worst = 0.0f64;
-        for (i, a) in bodies.iter().enumerate() {
-            for b in &bodies[i + 1..] {
-                let reach = a.radius() + b.radius();
-                let band = 2e-6 * a.radius().min(b.radius()) + 1e-9 * (1.0 + reach);
-                worst = worst.max(reach - (b.position() - a.position()).length() - band);
-            }
-        }
-        worst
-    };
+    let start = centre_of_mass(&world);
     let mut apart = false;
     for _ in 0..120 {
         world.step(1.0 / 60.0).unwrap();
         assert!(world.bodies().iter().all(|b| b.velocity() == DVec3::ZERO));
-        assert!((centre(&world) - start).length() <= 1e-12);
-        if deepest(&world) <= 0.0 {
+        assert!((centre_of_mass(&world) - start).length() <= 1e-12);
+        if deepest_beyond_band(&world) <= 0.0 {
             apart = true;
             break;
         }
     }
-    assert!(apart, "still {} m deep after 2 s", deepest(&world));
+    assert!(
+        apart,
+        "still {} m deep after 2 s",
+        deepest_beyond_band(&world)
+    );
 }

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{centre_of_mass, deepest_overlap};
+use common::{centre_of_mass, deepest_beyond_band, deepest_overlap};
 use proptest::prelude::*;
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -37,21 +37,6 @@ fn world_of(spheres: &[(f64, f64, f64, f64, f64)]) -> World {
             .unwrap();
     }
     world
-}
-
-/// The deepest overlap of any pair beyond its contact band (a millionth of the smaller
-/// diameter, plus the tolerance: within it the pair touches), 0 if none.
-fn deepest_beyond_band(world: &World) -> f64 {
-    let bodies = world.bodies();
-    let mut worst = 0.0f64;
-    for (i, a) in bodies.iter().enumerate() {
-        for b in &bodies[i + 1..] {
-            let reach = a.radius() + b.radius();
-            let band = 2e-6 * a.radius().min(b.radius()) + 1e-9 * (1.0 + reach);
-            worst = worst.max(reach - (b.position() - a.position()).length() - band);
-        }
-    }
-    worst
 }
 
 proptest! {

@@ -2,8 +2,8 @@
 //! cases it found, the creep allowance, a sheet of spheres over fixed ones, head-on pairs
 //! that must each collide within one step, a pit of spheres dropped into an open box,
 //! spheres among others hanging on strings, a crowd placed overlapping with no gravity, and
-//! the deepest overlap and centre of mass of a world; and the property tests' configuration
-//! from a fixed seed.
+//! the deepest overlap (also beyond the contact band) and centre of mass of a world; and the
+//! property tests' configuration from a fixed seed.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
@@ -270,6 +270,21 @@ pub fn deepest_overlap(world: &World) -> f64 {
 }
 
 /// The mass-weighted mean position of the dynamic spheres.
+/// The deepest overlap of any pair beyond its contact band (a millionth of the smaller
+/// diameter, plus the tolerance: within it the pair touches), 0 if none.
+pub fn deepest_beyond_band(world: &World) -> f64 {
+    let bodies = world.bodies();
+    let mut worst = 0.0f64;
+    for (i, a) in bodies.iter().enumerate() {
+        for b in &bodies[i + 1..] {
+            let reach = a.radius() + b.radius();
+            let band = 2e-6 * a.radius().min(b.radius()) + 1e-9 * (1.0 + reach);
+            worst = worst.max(reach - (b.position() - a.position()).length() - band);
+        }
+    }
+    worst
+}
+
 pub fn centre_of_mass(world: &World) -> DVec3 {
     let (mut sum, mut mass) = (DVec3::ZERO, 0.0);
     for body in world.bodies().iter().filter(|b| !b.is_fixed()) {

@@ -12,8 +12,8 @@
 
 mod common;
 
-use common::{centre_of_mass, deepest_beyond_band};
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+use common::{centre_of_mass, crowd_at_rest, deepest_beyond_band};
+use sphere_physics::glam::DVec3;
 
 /// Position, radius and density of each sphere, as the property test drew them.
 const CROWD: [(f64, f64, f64, f64, f64); 26] = [
@@ -203,16 +203,7 @@ const CROWD: [(f64, f64, f64, f64, f64); 26] = [
 
 #[test]
 fn a_caged_light_sphere_comes_apart_within_two_seconds() {
-    let mut world = World::new(Settings::default());
-    for &(x, y, z, radius, density) in &CROWD {
-        world
-            .add_sphere(
-                SphereDesc::new(radius)
-                    .at(DVec3::new(x, y, z))
-                    .with_density(density),
-            )
-            .unwrap();
-    }
+    let mut world = crowd_at_rest(&CROWD);
     let start = centre_of_mass(&world);
     let mut apart = false;
     for _ in 0..120 {

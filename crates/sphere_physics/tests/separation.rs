@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{centre_of_mass, deepest_beyond_band, deepest_overlap};
+use common::{centre_of_mass, crowd_at_rest, deepest_beyond_band, deepest_overlap};
 use proptest::prelude::*;
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -25,20 +25,6 @@ fn crowd() -> impl Strategy<Value = Vec<(f64, f64, f64, f64, f64)>> {
     )
 }
 
-fn world_of(spheres: &[(f64, f64, f64, f64, f64)]) -> World {
-    let mut world = World::new(Settings::default());
-    for &(x, y, z, radius, density) in spheres {
-        world
-            .add_sphere(
-                SphereDesc::new(radius)
-                    .at(DVec3::new(x, y, z))
-                    .with_density(density),
-            )
-            .unwrap();
-    }
-    world
-}
-
 proptest! {
     #![proptest_config(crate::common::proptest_config(64, crate::common::SEED))]
     /// A crowd placed overlapping at rest: nothing gains a speed, the centre of mass stays,
@@ -47,7 +33,7 @@ proptest! {
     /// radius would take 110, at a tenth of its radius a step).
     #[test]
     fn a_crowd_at_rest_comes_apart_in_place(spheres in crowd()) {
-        let mut world = world_of(&spheres);
+        let mut world = crowd_at_rest(&spheres);
         let centre = centre_of_mass(&world);
         let mut apart = false;
         for step in 0..120 {

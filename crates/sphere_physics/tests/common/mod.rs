@@ -270,6 +270,22 @@ pub fn deepest_overlap(world: &World) -> f64 {
 }
 
 /// The mass-weighted mean position of the dynamic spheres.
+/// A world with no gravity of spheres at rest, each `(x, y, z, radius, density)`, placed
+/// with no regard for each other.
+pub fn crowd_at_rest(spheres: &[(f64, f64, f64, f64, f64)]) -> World {
+    let mut world = World::new(Settings::default());
+    for &(x, y, z, radius, density) in spheres {
+        world
+            .add_sphere(
+                SphereDesc::new(radius)
+                    .at(DVec3::new(x, y, z))
+                    .with_density(density),
+            )
+            .unwrap();
+    }
+    world
+}
+
 /// The deepest overlap of any pair beyond its contact band (a millionth of the smaller
 /// diameter, plus the tolerance: within it the pair touches), 0 if none.
 pub fn deepest_beyond_band(world: &World) -> f64 {

@@ -67,7 +67,16 @@ proptest! {
         ..ProptestConfig::default()
     })]
     /// `Leapfrog`: over 10 s the energy at no step's end exceeds the start's by more than
-    /// rounding (measured: 7.5e-15 of it at worst over 20 bowls of 20 and 40 balls, 20 s).
+    /// rounding (measured: 7.5e-15 of it at worst over 20 bowls of 20 and 40 balls, 20 s),
+    /// but for what balls coming to rest may add: each time a ball takes a resting impact (a
+    /// meeting slow enough for the resting rule, restitution 0) in a step after one without,
+    /// up to `m·(g·dt/2)²/2`. A resting impact stops the pair's drift, which leapfrog takes at
+    /// the step's middle speed, not the speed at its instant, so a ball at rest on the floor
+    /// ends each step with the half kick after its drift, `g·dt/2` downward, in its velocity
+    /// (the contact takes it back at the next step's start), and its energy reads that much
+    /// more. (Found with `PROPTEST_RNG_SEED` 42 and 44 and 2 000 cases: a ball of 4.2 g coming
+    /// to rest on the floor at 32 Hz read 1.3e-5 J more, 1.7e-5 of the bowl's energy, under
+    /// the 4.9e-5 J this allows.)
     #[test]
     fn leapfrog_keeps_a_bowl_of_elastic_balls_energy_to_rounding(
         places in places(24),
@@ -75,12 +84,30 @@ proptest! {
     ) {
         let mut world = bowl(IntegratorKind::Leapfrog, &places);
         let start = world.kinetic_energy() + world.potential_energy();
+        let dt = 1.0 / f64::from(hz);
+        let half_kick = 9.81 * dt / 2.0;
+        let (mut resting_before, mut resting_now) = (Vec::new(), Vec::new());
+        let mut coming_to_rest = 0.0;
         for step in 0..(10 * hz) {
-            let stats = *world.step(1.0 / f64::from(hz)).unwrap();
+            let stats = *world.step(dt).unwrap();
+            resting_now.clear();
+            for c in world.collisions().iter().filter(|c| c.resting) {
+                for id in [c.a, c.b] {
+                    let body = world.body(id).unwrap();
+                    if !body.is_fixed() && !resting_now.contains(&id) {
+                        resting_now.push(id);
+                        if !resting_before.contains(&id) {
+                            coming_to_rest += 0.5 * body.mass() * half_kick * half_kick;
+                        }
+                    }
+                }
+            }
+            std::mem::swap(&mut resting_before, &mut resting_now);
             let energy = stats.kinetic_energy + stats.potential_energy;
             prop_assert!(
-                energy <= start + 1e-12 * start.abs(),
-                "step {}: {} from {} ({:e} more)", step, energy, start, (energy - start) / start
+                energy <= start + 1e-12 * start.abs() + coming_to_rest,
+                "step {}: {} from {} ({:e} more; {:e} allowed for balls coming to rest)",
+                step, energy, start, (energy - start) / start, coming_to_rest
             );
         }
     }

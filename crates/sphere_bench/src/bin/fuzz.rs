@@ -20,7 +20,8 @@
 //! (no gravity, no kinematic sphere, no string; up to 1e-9 of it for rounding); the step's
 //! reported deepest overlap no shallower than the deepest of any pair. Any of these failing is
 //! an error (the exit code says so). A scene whose deepest overlap passes 5% of the pair's
-//! smaller radius is listed too, with whether its collision budget ran out that step, but is
+//! smaller radius is listed too, with whether its collision budget ran out that step (and the
+//! bisection's iterations and the distance from the origin, where `--wide` gives them), but is
 //! not an error: the known limits (a spent budget, a fast-turning string's chord, the
 //! bisection's tunnelling) leave such overlaps; the counts show how often. So are the scenes
 //! still past 5% at their last step (with `--overlapping` every scene starts overlapping: what
@@ -76,6 +77,10 @@ struct Kind {
     fixed: bool,
     kinematic: bool,
     strings: bool,
+    /// The bisection's iterations, if the scene uses it (`--wide`), not the exact method.
+    bisection: Option<u32>,
+    /// How far the scene lies from the origin (`--wide`).
+    offset: f64,
 }
 
 fn scene(seed: u64, o: &Options) -> (World, Kind, f64, u32) {
@@ -83,11 +88,13 @@ fn scene(seed: u64, o: &Options) -> (World, Kind, f64, u32) {
     let (gravity, fixed, kinematic) = (r.unit() < 0.5, r.unit() < 0.5, r.unit() < 0.15);
     let strings = r.unit() < 0.15 && o.strings != Strings::None;
     let leapfrog = r.unit() < 0.5;
-    let kind = Kind {
+    let mut kind = Kind {
         gravity,
         fixed,
         kinematic,
         strings,
+        bisection: None,
+        offset: 0.0,
     };
     let mut settings = if gravity {
         Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
@@ -100,12 +107,14 @@ fn scene(seed: u64, o: &Options) -> (World, Kind, f64, u32) {
     if o.wide && r.unit() < 0.3 {
         let max_iterations = 8 + (r.unit() * 56.0) as u32;
         settings.method = ToiMethod::Bisection { max_iterations };
+        kind.bisection = Some(max_iterations);
     }
     let offset = if o.wide && r.unit() < 0.2 {
         r.vector(1.0) * r.log(1e2, 1e5)
     } else {
         DVec3::ZERO
     };
+    kind.offset = offset.length();
     let mut world = World::new(settings);
     let n = 2 + (r.unit() * 120.0) as usize;
     let span = r.log(0.5, 20.0);
@@ -319,7 +328,7 @@ fn main() {
         }
     };
     let (mut errors, mut deep, mut deep_spent, mut with_strings) = (0u64, 0u64, 0u64, 0u64);
-    let mut deep_at_end = 0u64;
+    let (mut deep_at_end, mut deep_bisection) = (0u64, 0u64);
     for seed in o.from..o.from + o.count {
         let (kind, outcome) = check(seed, &o);
         with_strings += u64::from(kind.strings);
@@ -334,17 +343,24 @@ fn main() {
                     deep_spent += 1;
                 } else {
                     deep += 1;
+                    deep_bisection += u64::from(kind.bisection.is_some());
                 }
                 let budget = if spent {
                     "budget spent"
                 } else {
                     "within budget"
                 };
-                let gravity = if kind.gravity {
+                let mut gravity = String::from(if kind.gravity {
                     "gravity"
                 } else {
                     "no gravity"
-                };
+                });
+                if let Some(iterations) = kind.bisection {
+                    gravity += &format!(", bisection of {iterations}");
+                }
+                if kind.offset > 0.0 {
+                    gravity += &format!(", {:.0e} m out", kind.offset);
+                }
                 println!(
                     "seed {seed}: overlap {worst:.3} of the smaller radius ({budget}), {last:.3} \
                      at the last step ({gravity})"
@@ -355,8 +371,8 @@ fn main() {
     }
     println!(
         "{} scenes ({with_strings} with strings): {errors} errors; past 5% of a radius: {deep} \
-         within the collision budget, {deep_spent} with it spent; {deep_at_end} still past it at \
-         the last step",
+         within the collision budget ({deep_bisection} of them with the bisection), {deep_spent} \
+         with it spent; {deep_at_end} still past it at the last step",
         o.count
     );
     if errors > 0 {

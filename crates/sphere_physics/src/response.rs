@@ -231,7 +231,7 @@ pub fn resolve_simultaneous(
         0.0
     };
     // `impulses` is the exact solve's scratch too: its answer is left in the first `n`.
-    if compress_exactly(inverse_masses, velocities, contacts, scale, impulses) {
+    if compress_exactly(inverse_masses, velocities, contacts, scale, false, impulses) {
         impulses.truncate(n);
         for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
             if *impulse > 0.0 {
@@ -368,6 +368,7 @@ fn compress_exactly(
     velocities: &[DVec3],
     contacts: &[GroupContact],
     scale: f64,
+    signed: bool,
     work: &mut Vec<f64>,
 ) -> bool {
     let n = contacts.len();
@@ -391,7 +392,12 @@ fn compress_exactly(
         }
     };
     for (i, ci) in contacts.iter().enumerate() {
-        b[i] = (velocities[ci.b] - velocities[ci.a]).dot(ci.normal) - ci.aimed_bias();
+        let bias = if signed && ci.bias.is_finite() {
+            ci.bias
+        } else {
+            ci.aimed_bias()
+        };
+        b[i] = (velocities[ci.b] - velocities[ci.a]).dot(ci.normal) - bias;
         for (j, cj) in contacts.iter().enumerate() {
             let coupling: f64 = [cj.a, cj.b]
                 .into_iter()
@@ -488,6 +494,38 @@ fn compress_exactly(
         }
     }
     false
+}
+
+/// The compression impulses of a group of at most [`MAX_EXACT_CONTACTS`] contacts, exactly, as
+/// [`resolve_simultaneous`] finds them but with each contact's [`GroupContact::bias`] taken as
+/// it is, negative ones too (a contact allowed to close that fast: the resting solve's guards
+/// and the fallback's pairs still apart), and no restitution: `impulses` gets each contact's
+/// impulse, and `velocities` are left as they were. False (and nothing found) for a larger
+/// group, or when no answer passes (see `compress_exactly`).
+pub(crate) fn compress_with_signed_biases(
+    inverse_masses: &[f64],
+    velocities: &[DVec3],
+    contacts: &[GroupContact],
+    impulses: &mut Vec<f64>,
+) -> bool {
+    let scale = contacts
+        .iter()
+        .map(|c| {
+            let speed = (velocities[c.b] - velocities[c.a]).dot(c.normal).abs();
+            let bias = if c.bias.is_finite() {
+                c.bias.abs()
+            } else {
+                0.0
+            };
+            speed.max(bias)
+        })
+        .fold(0.0f64, f64::max);
+    if compress_exactly(inverse_masses, velocities, contacts, scale, true, impulses) {
+        impulses.truncate(contacts.len());
+        true
+    } else {
+        false
+    }
 }
 
 /// Solves `A_SS λ_S = -b_S` for the contacts in `set` (the others get 0) into `lambda`, by

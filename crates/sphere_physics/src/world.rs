@@ -65,8 +65,11 @@ pub struct Settings {
     /// more sweeps: a long line of spheres struck hard passes its impulses on one contact a sweep)
     /// ([`StepStats::fell_back`]; with bodies on strings the rest are deferred to the next step
     /// instead). No body takes more than 64 times this in one step (so that a sphere caught between
-    /// fixed ones, which bounces between them without end, cannot spend the whole budget); its
-    /// collisions beyond that are deferred to the next step and counted in
+    /// fixed ones, which bounces between them without end, cannot spend the whole budget): a body
+    /// past that share is solved at once with every contact touching it through dynamic bodies,
+    /// restitution 0 (a light sphere squeezed between heavy ones bounces faster and faster, without
+    /// end before the squeeze does; this is how those bounces end), up to 8 times in a step, and
+    /// its collisions after that are deferred to the next step and counted in
     /// [`StepStats::collisions_deferred`]. The shower and gas benchmarks take under 0.3 collisions
     /// per sphere per step, and a sphere at the bottom of the 100k shower's pile up to 381. With
     /// substeps, each substep has this budget (and records its collisions): a wedged sphere may

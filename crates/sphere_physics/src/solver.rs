@@ -193,8 +193,11 @@ const PAIR_BATCH: usize = 16;
 /// at the bottom of the 100k-sphere shower benchmark's pile takes up to 381.
 const BODY_SHARE: u32 = 64;
 
-/// How many times [`Solver::squeeze`] may solve a body past its share of collisions in one
-/// step; its impacts after that are deferred.
+/// How far past its share of collisions a body of an impact may be for the impact to be
+/// squeezed (see [`Solver::squeeze`]; each squeeze changes each of its bodies' drifts once):
+/// past that, unless the other body is still within it, its impacts are deferred. A body that
+/// cannot be kept out of both sides (a kinematic sphere pressing it against a fixed one) is
+/// squeezed a few times a step, not without end.
 const SQUEEZES: u32 = 8;
 
 /// The most contacts [`Solver::squeeze`] gathers into one solve.
@@ -216,7 +219,8 @@ pub(crate) struct Solver {
     largest_kick_after: f64,
     /// [`Solver::solve_deep_groups_exactly`]'s scratch.
     exact: ExactScratch,
-    /// Every contact of the group being solved has restitution 0 (see [`Solver::squeeze`]).
+    /// Every contact of the group being solved has restitution 0 and no push against its
+    /// overlap (see [`Solver::squeeze`]).
     inelastic: bool,
     /// [`Solver::squeeze`]'s search: the dynamic bodies it reached, in order, one bit per
     /// segment reached and one per segment looked at (both cleared after it).
@@ -989,13 +993,8 @@ impl Solver {
                             (share..share.saturating_add(SQUEEZES)).contains(&versions[k as usize])
                         })
                     });
-                if squeezable && events < budget && !self.strings {
-                    self.squeeze(component, event.time, ctx, stats);
-                    events = events.saturating_add(self.joined.len() as u32);
-                    joined_any = true;
-                    continue;
-                }
-                if events >= budget || over_share {
+                let squeeze = squeezable && events < budget && !self.strings;
+                if events >= budget || (over_share && !squeeze) {
                     stats.collisions_deferred = stats
                         .collisions_deferred
                         .saturating_add(component.len() as u32);
@@ -1008,19 +1007,28 @@ impl Solver {
                     continue;
                 }
                 if !self.pushes.is_empty()
-                    && component.iter().any(|e| {
-                        bit(&self.pushed_bits, e.a as usize) || bit(&self.pushed_bits, e.b as usize)
-                    })
+                    && (squeeze
+                        || component.iter().any(|e| {
+                            bit(&self.pushed_bits, e.a as usize)
+                                || bit(&self.pushed_bits, e.b as usize)
+                        }))
                 {
                     // A pushed body meets another: the pushes end here (all of them, so
                     // momentum stays kept), and the pushed bodies' impacts are sought again
                     // on their velocities without them (a push's speed is not the body's).
+                    // So too before a squeeze, whose cluster may reach pushed bodies.
                     self.end_pushes(event.time, ctx);
                     for e in component {
                         if self.is_current(e) {
                             self.queue.push(*e);
                         }
                     }
+                    joined_any = true;
+                    continue;
+                }
+                if squeeze {
+                    self.squeeze(component, event.time, ctx, stats);
+                    events = events.saturating_add(self.joined.len() as u32);
                     joined_any = true;
                     continue;
                 }
@@ -1710,8 +1718,8 @@ impl Solver {
     /// with restitutions below 1 the bounces have no end before the squeeze does (an
     /// inelastic collapse). It took its whole share, 1024 collisions, and was then deferred
     /// and squeezed into them (2.8 of its radius in one of the fuzz's scenes). The solve
-    /// stops every contact of the cluster closing at once, as the bounces would in the limit:
-    /// momentum kept, no energy gained.
+    /// stops every contact of the cluster closing at once, as the bounces would in the limit
+    /// (no push against an overlap: it only stops the contacts closing), keeping momentum.
     fn squeeze(
         &mut self,
         component: &[Event],

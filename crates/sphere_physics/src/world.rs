@@ -68,7 +68,7 @@ pub struct Settings {
     /// fixed ones, which bounces between them without end, cannot spend the whole budget): a body
     /// past that share is solved at once with every contact touching it through dynamic bodies,
     /// restitution 0 (a light sphere squeezed between heavy ones bounces faster and faster, without
-    /// end before the squeeze does; this is how those bounces end), up to 8 times in a step, and
+    /// end before the squeeze does; this is how those bounces end), a few times in a step, and
     /// its collisions after that are deferred to the next step and counted in
     /// [`StepStats::collisions_deferred`]. The shower and gas benchmarks take under 0.3 collisions
     /// per sphere per step, and a sphere at the bottom of the 100k shower's pile up to 381. With

@@ -462,7 +462,7 @@ impl Solver {
         // while.
         let threshold = self.sweep_threshold();
         self.finish_sweeps(threshold, rest, ctx);
-        self.solve_deep_groups_exactly(rest, ctx);
+        self.solve_deep_groups_exactly(rest, false, ctx);
         // The deep pushes held back above go on top, as the step's resting solve's do (see
         // `solve_pushes`), and are finished the same way: undone by the step's end, a long
         // chain's overlaps would come back deeper every step.
@@ -551,8 +551,20 @@ impl Solver {
     /// 64 sweeps moved the load by a 30 000th of itself each), and a pebble squeezed between
     /// two such balls closing on it ended the fallback's solve 1.2 cm into one and was pushed
     /// all the way in by later steps. Larger groups (a pile) keep the sweeps' answer, as does a
-    /// group whose exact solve finds none (rounding).
-    pub(super) fn solve_deep_groups_exactly(&mut self, rest: f64, ctx: &StepContext<'_>) {
+    /// group whose exact solve finds none (rounding). With `pushes`, the contacts' pushes
+    /// against overlaps are met in full (the resting solve then checks that none sent a body
+    /// off too fast, and solves them apart if one did: `pushed_too_fast`); without (the
+    /// fallback, which has no such check), only their allowed approaches are: pushes met in
+    /// full on nearly opposite sides of a sphere part it many times faster than either. Not
+    /// run where the
+    /// resting solve solves its pushes apart (a deep overlap somewhere, or pushes that sent a
+    /// body off too fast: see `solve_pushes`).
+    pub(super) fn solve_deep_groups_exactly(
+        &mut self,
+        rest: f64,
+        pushes: bool,
+        ctx: &StepContext<'_>,
+    ) {
         const DEEP: f64 = 0.01;
         let deep = |solver: &Self, c: &RestingContact| {
             let (sa, sb) = (
@@ -590,7 +602,7 @@ impl Solver {
                     .iter()
                     .any(|e| deep(self, &self.resting[e.version_a as usize]))
             {
-                self.solve_resting_group_exactly(group);
+                self.solve_resting_group_exactly(group, pushes);
             }
         }
         self.exact.events = events;
@@ -600,7 +612,7 @@ impl Solver {
     /// [`Solver::solve_deep_groups_exactly`] for one group (its contacts are the resting
     /// contacts `e.version_a` of `group`), in scratch of its own (the resting solve's pushes
     /// keep their bodies' places in `local_index` meanwhile).
-    fn solve_resting_group_exactly(&mut self, group: &[Event]) {
+    fn solve_resting_group_exactly(&mut self, group: &[Event], pushes: bool) {
         let x = &mut self.exact;
         if x.index.len() < self.segments.len() {
             x.index.resize(self.segments.len(), NOT_LOCAL);
@@ -632,7 +644,7 @@ impl Solver {
                 b,
                 normal: c.normal,
                 restitution: 0.0,
-                bias: c.bias,
+                bias: if pushes { c.bias } else { c.bias.min(0.0) },
                 string: false,
             });
         }
@@ -642,11 +654,14 @@ impl Solver {
             &x.contacts,
             &mut x.impulses,
         ) {
+            apply_impulses(
+                &x.contacts,
+                &x.impulses,
+                &x.inverse_masses,
+                &mut x.velocities,
+            );
             for (i, e) in group.iter().enumerate() {
-                let (c, impulse) = (x.contacts[i], x.impulses[i].max(0.0));
-                x.velocities[c.a] -= c.normal * (impulse * x.inverse_masses[c.a]);
-                x.velocities[c.b] += c.normal * (impulse * x.inverse_masses[c.b]);
-                self.resting[e.version_a as usize].impulse = impulse;
+                self.resting[e.version_a as usize].impulse = x.impulses[i].max(0.0);
             }
             for (i, &k) in x.bodies.iter().enumerate() {
                 if x.inverse_masses[i] > 0.0 {
@@ -814,7 +829,7 @@ impl Solver {
         } else {
             self.warm_start(ctx);
             self.sweep_resting(threshold, RESTING_SWEEPS);
-            self.solve_deep_groups_exactly(ctx.dt, ctx);
+            self.solve_deep_groups_exactly(ctx.dt, true, ctx);
             if pushing && self.pushed_too_fast(ctx) {
                 self.solve_pushes(threshold, ctx);
             }
@@ -1189,5 +1204,20 @@ impl Solver {
             Some(l) => own.max(l.2),
             None => own,
         }
+    }
+}
+
+/// Applies each of `contacts`' `impulses` (those above 0) to `velocities`, as the group's
+/// solves do: `a` pushed back along the normal, `b` forward, each by its inverse mass.
+fn apply_impulses(
+    contacts: &[GroupContact],
+    impulses: &[f64],
+    inverse_masses: &[f64],
+    velocities: &mut [DVec3],
+) {
+    for (c, &impulse) in contacts.iter().zip(impulses) {
+        let impulse = impulse.max(0.0);
+        velocities[c.a] -= c.normal * (impulse * inverse_masses[c.a]);
+        velocities[c.b] += c.normal * (impulse * inverse_masses[c.b]);
     }
 }

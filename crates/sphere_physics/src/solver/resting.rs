@@ -544,8 +544,8 @@ impl Solver {
 
     /// After the sweeps: each connected group of resting contacts (through dynamic bodies) of
     /// 2 to [`MAX_EXACT_CONTACTS`] contacts that the sweeps leave closing deeper than tolerated
-    /// over the `rest` of the step (half the band and a hundredth of the smaller radius, as
-    /// `fallback_excess` reckons) is solved exactly instead, by pivoting, from the velocities
+    /// over the `rest` of the step (half the band and a hundredth of the smaller radius: see
+    /// [`Solver::excess`]) is solved exactly instead, by pivoting, from the velocities
     /// before the sweeps' impulses. Gauss–Seidel converges at a rate set by the masses' ratio:
     /// a ball of 100 kg resting on a pebble of 3 g on a floor sank through it (the pair's
     /// 64 sweeps moved the load by a 30 000th of itself each), and a pebble squeezed between
@@ -556,26 +556,15 @@ impl Solver {
     /// off too fast, and solves them apart if one did: `pushed_too_fast`); without (the
     /// fallback, which has no such check), only their allowed approaches are: pushes met in
     /// full on nearly opposite sides of a sphere part it many times faster than either. Not
-    /// run where the
-    /// resting solve solves its pushes apart (a deep overlap somewhere, or pushes that sent a
-    /// body off too fast: see `solve_pushes`).
+    /// run where the resting solve solves its pushes apart (a deep overlap somewhere, or
+    /// pushes that sent a body off too fast: see `solve_pushes`).
     pub(super) fn solve_deep_groups_exactly(
         &mut self,
         rest: f64,
         pushes: bool,
         ctx: &StepContext<'_>,
     ) {
-        const DEEP: f64 = 0.01;
-        let deep = |solver: &Self, c: &RestingContact| {
-            let (sa, sb) = (
-                &solver.segments[c.a as usize],
-                &solver.segments[c.b as usize],
-            );
-            let speed = (sb.velocity - sa.velocity).dot(c.normal) - c.bias;
-            let tolerated =
-                0.5 * contact_band(sa, sb, ctx.settings) + DEEP * sa.radius().min(sb.radius());
-            -speed * rest > tolerated
-        };
+        let deep = |solver: &Self, c: &RestingContact| solver.excess(c, rest, ctx) > 0.0;
         if !self.resting.iter().any(|c| deep(self, c)) {
             return;
         }
@@ -678,17 +667,18 @@ impl Solver {
     /// beyond half their band and a hundredth of the smaller radius: the sum over those that
     /// would (0 when none does).
     fn fallback_excess(&self, rest: f64, ctx: &StepContext<'_>) -> f64 {
+        self.resting.iter().map(|c| self.excess(c, rest, ctx)).sum()
+    }
+
+    /// How much deeper than allowed contact `c` would end the `rest` of the step, beyond half
+    /// its band and a hundredth of the smaller radius (0 if it would not).
+    fn excess(&self, c: &RestingContact, rest: f64, ctx: &StepContext<'_>) -> f64 {
         const DEEP: f64 = 0.01;
-        self.resting
-            .iter()
-            .map(|c| {
-                let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
-                let speed = (sb.velocity - sa.velocity).dot(c.normal) - c.bias;
-                let tolerated =
-                    0.5 * contact_band(sa, sb, ctx.settings) + DEEP * sa.radius().min(sb.radius());
-                (-speed * rest - tolerated).max(0.0)
-            })
-            .sum()
+        let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
+        let speed = (sb.velocity - sa.velocity).dot(c.normal) - c.bias;
+        let tolerated =
+            0.5 * contact_band(sa, sb, ctx.settings) + DEEP * sa.radius().min(sb.radius());
+        (-speed * rest - tolerated).max(0.0)
     }
 
     /// Touches the bodies of every resting contact that took an impulse, and records those

@@ -3,8 +3,9 @@
 //!
 //! - **Pressed.** The resting solve and the fallback's (projected Gauss–Seidel) converge at a
 //!   rate set by the masses' ratio: a ball of 100 kg resting on a pebble of 3 g on a floor
-//!   sank through it (its 64 sweeps moved the load by a 30 000th of itself each). Groups of up
-//!   to 64 contacts that the sweeps leave closing deeper than tolerated are now solved exactly.
+//!   sank through it (a sweep carries the load on by a share of the order of the ratio, 3e-5
+//!   here). Groups of up to 64 contacts that the sweeps leave closing deeper than tolerated
+//!   are now solved exactly.
 //! - **Squeezed.** Between heavy spheres closing on it, a light one bounces faster and
 //!   faster, without end before the squeeze does (an inelastic collapse). In a small world the
 //!   collision budget ran out and the fallback's sweeps left the pebble 1.2 cm into one of

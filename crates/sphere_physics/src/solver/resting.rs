@@ -547,10 +547,10 @@ impl Solver {
     /// over the `rest` of the step (half the band and a hundredth of the smaller radius: see
     /// [`Solver::excess`]) is solved exactly instead, by pivoting, from the velocities
     /// before the sweeps' impulses. Gauss–Seidel converges at a rate set by the masses' ratio:
-    /// a ball of 100 kg resting on a pebble of 3 g on a floor sank through it (the pair's
-    /// 64 sweeps moved the load by a 30 000th of itself each), and a pebble squeezed between
-    /// two such balls closing on it ended the fallback's solve 1.2 cm into one and was pushed
-    /// all the way in by later steps. Larger groups (a pile) keep the sweeps' answer, as does a
+    /// a ball of 100 kg resting on a pebble of 3 g on a floor sank through it (a sweep carries
+    /// the load on by a share of the order of the ratio, 3e-5 there), and a pebble squeezed
+    /// between two such balls closing on it ended the fallback's solve 1.2 cm into one and was
+    /// pushed all the way in by later steps. Larger groups (a pile) keep the sweeps' answer, as does a
     /// group whose exact solve finds none (rounding). With `pushes`, the contacts' pushes
     /// against overlaps are met in full (the resting solve then checks that none sent a body
     /// off too fast, and solves them apart if one did: `pushed_too_fast`); without (the

@@ -419,8 +419,8 @@ impl World {
     /// With none, spheres left overlapping at the step's end (placed so, or parting slower than
     /// they overlap) are moved apart by their positions: each pair to touching, its spheres in
     /// proportion to their inverse masses (so momentum and kinetic energy are kept exactly, and
-    /// the centre of mass too but for moves away from a fixed sphere or one on a string, which
-    /// are not moved), each sphere at most a tenth of its radius a step (a substep, with
+    /// the centre of mass too but for moves away from a fixed sphere, which is not moved, or
+    /// one on a string, which moves only within its string's length), each sphere at most a tenth of its radius a step (a substep, with
     /// substeps): a crowd placed a radius deep comes apart over a few dozen steps, and a sphere
     /// deep in a bigger one creeps out. [`StepStats::separated`] counts the spheres moved.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {

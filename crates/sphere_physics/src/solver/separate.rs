@@ -6,13 +6,16 @@
 //! presses a contact, so nothing is a resting contact), and two spheres left overlapping at
 //! rest, or parting slower than they overlap, stayed so for ever. Here such pairs are moved
 //! apart at the step's end, each body along the pair's normal in proportion to its inverse
-//! mass: the pair's centre of mass stays where it is (unless one of them is fixed or on a
-//! string, and is not moved), and no velocity changes, so momentum and kinetic energy are
-//! kept exactly. Part of [`Solver`]: these are its methods.
+//! mass: the pair's centre of mass stays where it is (unless one of them is fixed, and is not
+//! moved, or on a string, which holds it within its length), and no velocity changes, so
+//! momentum and kinetic energy are kept exactly. Spheres on strings in such a world are
+//! pressed together by their swings, which curve into each other; moving them apart here is
+//! what keeps them from sinking into each other step after step. Part of [`Solver`]: these
+//! are its methods.
 
 use glam::DVec3;
 
-use super::{MAX_CORRECTION, Solver, StepContext, bit, contact_band};
+use super::{MAX_CORRECTION, Solver, StepContext, Strung, bit, contact_band};
 use crate::Body;
 use crate::broad_phase::Aabb;
 
@@ -31,8 +34,11 @@ impl Solver {
     /// moves at most [`MAX_CORRECTION`] of its radius in a step, as a push under gravity does,
     /// so a sphere placed deep inside others comes out over a few steps and one caught between
     /// fixed spheres cannot be flung (the cap is a substep's, and apart from the pushes of a
-    /// step that falls back). Fixed spheres and spheres on strings are not moved (a string's
-    /// length binds its sphere's position). Two spheres at the same point part along x.
+    /// step that falls back). Fixed spheres are not moved. A sphere on a string is kept within
+    /// its length: a move that would take it past it puts it on the string's sphere instead
+    /// (so a taut string's sphere moves along its swing). Before, spheres on strings were not
+    /// moved, and two of them pressed together by their swings sank 2 cm into each other
+    /// (`regression_strung_spheres_pressed_zero_g`). Two spheres at the same point part along x.
     /// Returns how many bodies moved.
     ///
     /// The pairs come from those the step tested (a superset of those that can end it
@@ -159,9 +165,32 @@ impl Solver {
                     continue;
                 }
                 for (k, m) in [(i, move_i), (j, move_j)] {
-                    if bit(&self.separate_bits, k) && m * scale != DVec3::ZERO {
-                        self.separate_at[k] += m * scale;
-                        self.separate_moves[k] += m * scale;
+                    if !bit(&self.separate_bits, k) {
+                        continue;
+                    }
+                    let mut to = self.separate_at[k] + m * scale;
+                    if let Some(&Strung { tether, .. }) = self.strung(k) {
+                        // Kept within its string's length. On it, the move loses its part
+                        // outward along the string (none is left of a move straight out); a
+                        // move past the length is put back on the string's sphere, at the
+                        // nearest point (no farther from where it was than the move asked).
+                        let r = self.separate_at[k] - tether.anchor;
+                        let distance = r.length();
+                        if distance >= tether.length * (1.0 - 1e-9) && distance > 0.0 {
+                            let outward = r / distance;
+                            let m = m * scale;
+                            to = self.separate_at[k] + m - outward * m.dot(outward).max(0.0);
+                        }
+                        let r = to - tether.anchor;
+                        let distance = r.length();
+                        if distance > tether.length {
+                            to = tether.anchor + r * (tether.length / distance);
+                        }
+                    }
+                    let step = to - self.separate_at[k];
+                    if step != DVec3::ZERO {
+                        self.separate_at[k] = to;
+                        self.separate_moves[k] += step;
                         moved = true;
                     }
                 }
@@ -194,17 +223,17 @@ impl Solver {
 
 impl Solver {
     /// How far segment `k` may be moved apart from others in a step: [`MAX_CORRECTION`] of
-    /// its radius, or 0 for a fixed sphere or one on a string.
+    /// its radius, or 0 for a fixed sphere.
     fn separation_cap(&self, k: usize) -> f64 {
-        if self.segments[k].is_fixed() || self.string_of(k).is_some() {
+        if self.segments[k].is_fixed() {
             0.0
         } else {
             MAX_CORRECTION * self.segments[k].radius()
         }
     }
 
-    /// Lets segment `k` move in this step's separation, unless it may not (fixed, or on a
-    /// string) or already does: its box is grown by its cap in the broad phase, and its
+    /// Lets segment `k` move in this step's separation, unless it may not (fixed) or already
+    /// does: its box is grown by its cap in the broad phase, and its
     /// neighbours are to be sought.
     fn may_separate(&mut self, k: usize, dt: f64) {
         if bit(&self.separate_bits, k) || self.separation_cap(k) == 0.0 {

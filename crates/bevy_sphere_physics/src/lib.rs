@@ -37,8 +37,9 @@
 //!   positions, without gaining speed (see [`sphere_physics::World::step`]): under gravity or
 //!   an applied force by the core's resting solve, a pair by at most a tenth of the smaller
 //!   radius a step; with nothing accelerating at each step's end, each sphere by at most a
-//!   tenth of its own radius a step, fixed spheres and spheres on strings not at all. A crowd
-//!   spawned a radius deep into itself comes apart over a few dozen steps.
+//!   tenth of its own radius a step, fixed spheres not at all, spheres on strings only within
+//!   their strings' lengths. A crowd spawned a radius deep into itself comes apart over a few
+//!   dozen steps.
 //!
 //! Collisions come as [`SphereCollision`] messages and as [`SphereHit`] entity events that
 //! observers on either sphere receive, once per collision. [`SpherePhysicsDiagnostics`] holds

@@ -70,10 +70,14 @@ fn regression_a_heavy_ball_on_a_pebble_does_not_sink_through_it() {
 /// restitution 0.9, in a world of three (the budget runs out: the fallback) and in one with
 /// 80 more spheres at rest far off (the pebble's share runs out first). Before: 1.2 cm deep
 /// after the first squeeze, and the pebble pushed on into one of them step after step, 0.2 m
-/// in the end; with the bystanders 7.5 cm, and 41 406 collisions in the second. Now 0.33 mm
-/// at worst in the world of three (the fallback's pairs may close to within half their band,
-/// so the pebble bounces again in nearly every step, and the budget runs out in each), and
-/// none with the bystanders (1027 collisions in all).
+/// in the end; with the bystanders 7.5 cm, and 41 406 collisions in the second. Then, in the
+/// world of three, the fallback's sweeps left the balls closing at 0.9 mm/s (they carry a
+/// load on through the pebble by a share of the order of the masses' ratio a sweep), so the
+/// pebble bounced between them again in every step, the budget ran out in each (50
+/// collisions) and they sank 0.29 mm into it over 40 steps. Now, with nothing accelerating,
+/// the fallback solves a small group exactly once any of its contacts would close by more
+/// than half its band (`regression_squeezed_pebble_comes_to_rest_zero_g` below); none with
+/// the bystanders (1027 collisions in all).
 #[test]
 fn regression_a_pebble_squeezed_between_heavy_balls() {
     for bystanders in [0, 80] {
@@ -99,6 +103,37 @@ fn regression_a_pebble_squeezed_between_heavy_balls() {
         );
         assert!((world.momentum() - start).length() <= 1e-9 * start.length().max(1.0));
         assert!(world.kinetic_energy() <= energy);
+    }
+}
+
+/// The squeeze in a world of three: once the fallback has stopped the balls on the pebble,
+/// the three stay together at rest, touching, with no collision in any later step (before:
+/// 50 a step, every step, the balls closing at 0.9 mm/s and 0.29 mm into the pebble after
+/// 40 steps).
+#[test]
+fn regression_squeezed_pebble_comes_to_rest_zero_g() {
+    let mut world = World::new(Settings::default());
+    world
+        .add_sphere(ball(DVec3::new(-0.25, 0.0, 0.0), 100.0, 0.9).moving(DVec3::X))
+        .unwrap();
+    world.add_sphere(ball(DVec3::ZERO, 0.003, 0.9)).unwrap();
+    world
+        .add_sphere(ball(DVec3::new(0.27, 0.0, 0.0), 100.0, 0.9).moving(-DVec3::X))
+        .unwrap();
+    for _ in 0..10 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    for step in 10..120 {
+        let stats = *world.step(1.0 / 60.0).unwrap();
+        assert_eq!(stats.collisions, 0, "step {step}");
+        assert!(
+            stats.max_overlap <= 1e-12,
+            "step {step}: {}",
+            stats.max_overlap
+        );
+    }
+    for b in world.bodies() {
+        assert!(b.velocity().length() <= 1e-12, "{:?}", b.velocity());
     }
 }
 

@@ -8,6 +8,10 @@ use glam::DVec3;
 use super::*;
 use crate::response::{MAX_EXACT_CONTACTS, compress_with_signed_biases};
 
+/// The share of the smaller radius a contact may close beyond half its band (see
+/// `Solver::excess`).
+const DEEP: f64 = 0.01;
+
 impl Solver {
     /// Whether [`Solver::resting_contact`] may act on `(i, j)`: resting contacts are sought,
     /// and the pair touches (or both are fixed), or is near (see [`Solver::near`]) with a body
@@ -550,7 +554,11 @@ impl Solver {
     /// a ball of 100 kg resting on a pebble of 3 g on a floor sank through it (a sweep carries
     /// the load on by a share of the order of the ratio, 3e-5 there), and a pebble squeezed
     /// between two such balls closing on it ended the fallback's solve 1.2 cm into one and was
-    /// pushed all the way in by later steps. Larger groups (a pile) keep the sweeps' answer, as does a
+    /// pushed all the way in by later steps. In the fallback with nothing accelerating (no
+    /// resting solve in the steps after it), a group is solved once any of its contacts would
+    /// close by more than half its band: the sweeps left that pebble's balls closing at 0.9
+    /// mm/s, so it bounced between them again in every step, each spending the budget.
+    /// Larger groups (a pile) keep the sweeps' answer, as does a
     /// group whose exact solve finds none (rounding). With `pushes`, the contacts' pushes
     /// against overlaps are met in full (the resting solve then checks that none sent a body
     /// off too fast, and solves them apart if one did: `pushed_too_fast`); without (the
@@ -564,7 +572,15 @@ impl Solver {
         pushes: bool,
         ctx: &StepContext<'_>,
     ) {
-        let deep = |solver: &Self, c: &RestingContact| solver.excess(c, rest, ctx) > 0.0;
+        // With nothing accelerating, no resting solve stops what the fallback leaves closing
+        // in the steps after: close by more than half the band, and the group is solved.
+        let deep_fraction = if pushes || !self.nothing_accelerates {
+            DEEP
+        } else {
+            0.0
+        };
+        let deep =
+            |solver: &Self, c: &RestingContact| solver.excess(c, rest, deep_fraction, ctx) > 0.0;
         if !self.resting.iter().any(|c| deep(self, c)) {
             return;
         }
@@ -667,17 +683,19 @@ impl Solver {
     /// beyond half their band and a hundredth of the smaller radius: the sum over those that
     /// would (0 when none does).
     fn fallback_excess(&self, rest: f64, ctx: &StepContext<'_>) -> f64 {
-        self.resting.iter().map(|c| self.excess(c, rest, ctx)).sum()
+        self.resting
+            .iter()
+            .map(|c| self.excess(c, rest, DEEP, ctx))
+            .sum()
     }
 
     /// How much deeper than allowed contact `c` would end the `rest` of the step, beyond half
-    /// its band and a hundredth of the smaller radius (0 if it would not).
-    fn excess(&self, c: &RestingContact, rest: f64, ctx: &StepContext<'_>) -> f64 {
-        const DEEP: f64 = 0.01;
+    /// its band and `deep` of the smaller radius (0 if it would not).
+    fn excess(&self, c: &RestingContact, rest: f64, deep: f64, ctx: &StepContext<'_>) -> f64 {
         let (sa, sb) = (&self.segments[c.a as usize], &self.segments[c.b as usize]);
         let speed = (sb.velocity - sa.velocity).dot(c.normal) - c.bias;
         let tolerated =
-            0.5 * contact_band(sa, sb, ctx.settings) + DEEP * sa.radius().min(sb.radius());
+            0.5 * contact_band(sa, sb, ctx.settings) + deep * sa.radius().min(sb.radius());
         (-speed * rest - tolerated).max(0.0)
     }
 

@@ -30,6 +30,20 @@ fn ball(at: DVec3, mass: f64, restitution: f64) -> SphereDesc {
         .with_restitution(restitution)
 }
 
+/// Two balls of 100 kg closing at 1 m/s each on a pebble of 3 g between them, no gravity,
+/// restitution 0.9.
+fn squeeze() -> World {
+    let mut world = World::new(Settings::default());
+    world
+        .add_sphere(ball(DVec3::new(-0.25, 0.0, 0.0), 100.0, 0.9).moving(DVec3::X))
+        .unwrap();
+    world.add_sphere(ball(DVec3::ZERO, 0.003, 0.9)).unwrap();
+    world
+        .add_sphere(ball(DVec3::new(0.27, 0.0, 0.0), 100.0, 0.9).moving(-DVec3::X))
+        .unwrap();
+    world
+}
+
 /// Steps `world` `steps` times: the deepest overlap at a step's end, and the collisions
 /// deferred.
 fn run(world: &mut World, steps: u32) -> (f64, u32) {
@@ -81,14 +95,7 @@ fn regression_a_heavy_ball_on_a_pebble_does_not_sink_through_it() {
 #[test]
 fn regression_a_pebble_squeezed_between_heavy_balls() {
     for bystanders in [0, 80] {
-        let mut world = World::new(Settings::default());
-        world
-            .add_sphere(ball(DVec3::new(-0.25, 0.0, 0.0), 100.0, 0.9).moving(DVec3::X))
-            .unwrap();
-        world.add_sphere(ball(DVec3::ZERO, 0.003, 0.9)).unwrap();
-        world
-            .add_sphere(ball(DVec3::new(0.27, 0.0, 0.0), 100.0, 0.9).moving(-DVec3::X))
-            .unwrap();
+        let mut world = squeeze();
         for k in 0..bystanders {
             world
                 .add_sphere(ball(DVec3::new(0.0, 10.0 + k as f64, 0.0), 1.0, 0.9))
@@ -112,14 +119,7 @@ fn regression_a_pebble_squeezed_between_heavy_balls() {
 /// 40 steps).
 #[test]
 fn regression_squeezed_pebble_comes_to_rest_zero_g() {
-    let mut world = World::new(Settings::default());
-    world
-        .add_sphere(ball(DVec3::new(-0.25, 0.0, 0.0), 100.0, 0.9).moving(DVec3::X))
-        .unwrap();
-    world.add_sphere(ball(DVec3::ZERO, 0.003, 0.9)).unwrap();
-    world
-        .add_sphere(ball(DVec3::new(0.27, 0.0, 0.0), 100.0, 0.9).moving(-DVec3::X))
-        .unwrap();
+    let mut world = squeeze();
     for _ in 0..10 {
         world.step(1.0 / 60.0).unwrap();
     }

@@ -519,6 +519,9 @@ struct RestingContact {
     /// The bodies' inverse masses (kept here: the solve sweeps over the contacts many times).
     inverse_mass_a: f64,
     inverse_mass_b: f64,
+    /// `1 / (inverse_mass_a + inverse_mass_b)`, the pair's effective mass along
+    /// the normal (a division kept off the sweeps' chain of dependent updates).
+    mass: f64,
     /// The separating speed to reach: enough to undo, over the step, an overlap deeper than
     /// the creep allowance (0 for the usual contact, within it).
     bias: f64,

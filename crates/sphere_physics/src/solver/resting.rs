@@ -110,13 +110,18 @@ impl Solver {
         press: f64,
         speculative: bool,
     ) {
+        let (inverse_mass_a, inverse_mass_b) = (
+            self.extra(a as usize).inverse_mass,
+            self.extra(b as usize).inverse_mass,
+        );
         self.resting.push(RestingContact {
             a,
             b,
             normal,
             impulse: 0.0,
-            inverse_mass_a: self.extra(a as usize).inverse_mass,
-            inverse_mass_b: self.extra(b as usize).inverse_mass,
+            inverse_mass_a,
+            inverse_mass_b,
+            mass: 1.0 / (inverse_mass_a + inverse_mass_b),
             bias,
             press,
             speculative,
@@ -767,7 +772,7 @@ impl Solver {
                 let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
                 let speed =
                     (self.segments[b].velocity - self.segments[a].velocity).dot(c.normal) - c.bias;
-                let next = (c.impulse - speed / (ima + imb)).max(0.0);
+                let next = (c.impulse - speed * c.mass).max(0.0);
                 let step = next - c.impulse;
                 if step != 0.0 {
                     c.impulse = next;

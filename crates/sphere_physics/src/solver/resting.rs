@@ -776,8 +776,12 @@ impl Solver {
                 let step = next - c.impulse;
                 if step != 0.0 {
                     c.impulse = next;
-                    self.segments[a].velocity -= c.normal * (step * ima);
-                    self.segments[b].velocity += c.normal * (step * imb);
+                    if ima != 0.0 {
+                        self.segments[a].velocity -= c.normal * (step * ima);
+                    }
+                    if imb != 0.0 {
+                        self.segments[b].velocity += c.normal * (step * imb);
+                    }
                     largest = largest.max((step * (ima + imb)).abs());
                 }
                 let moved = c.impulse - c.before;

@@ -566,6 +566,10 @@ const FALLBACK_MARGIN: f64 = 0.1;
 /// `Solver::push_on`).
 const FALLBACK_FINISH_SWEEPS: u32 = 1024;
 
+/// How many times the fallback's rounds may start again after its finishing sweeps and exact
+/// solves (see `Solver::fall_back`).
+const FALLBACK_PASSES: u32 = 4;
+
 /// The most Gauss–Seidel sweeps over the resting contacts in one step.
 const RESTING_SWEEPS: u32 = 64;
 

@@ -48,6 +48,26 @@ fn regression_a_landing_crowd_is_not_left_half_a_radius_deep() {
     assert!(overlap <= 0.02 * radius, "overlap {overlap}");
 }
 
+/// Found 2026-12-04 by `landing_pits_stay_shallow` with `PROPTEST_RNG_SEED=60` and 2000 cases:
+/// the fallback's rounds had stopped adding pairs, but its finishing sweeps then changed the
+/// velocities again (a long chain's), and a sphere they stopped was struck at 3.1 m/s by one
+/// falling onto it, 4.2 cm away at the fallback's instant: a pair no round had taken, left to
+/// close unresolved, ended the step 6.8% of a radius deep. The rounds now start again from
+/// the bodies the finishing leaves pressed: the deepest over two seconds is 1.2% of a radius.
+#[test]
+fn regression_a_pair_the_finishing_sweeps_bring_together_is_resolved() {
+    let radius = 0.050376488354520355;
+    let mut world = pit(143, 481, 0.34207040608630257, radius);
+    let (overlap, fell_back, finite) = land(&mut world, 120);
+    assert!(finite);
+    assert!(fell_back > 0, "the budget ran out: the fallback was used");
+    assert!(
+        overlap <= 0.02 * radius,
+        "overlap {} of a radius",
+        overlap / radius
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 20,

@@ -335,112 +335,160 @@ impl Solver {
         let mut candidates = std::mem::take(&mut self.candidates);
         // The solve changes velocities, which may bring other pairs together: rounds, each
         // adding the pairs the last one's changes could bring within the band, until none
-        // does.
-        for round in 0..=FALLBACK_ROUNDS {
-            let known = self.resting.len();
-            self.clear_touched();
-            for &k in &bodies {
-                self.touch(k);
-            }
-            // The first round also takes pairs a little farther apart (see
-            // `FALLBACK_MARGIN`), found with each body's box grown by that fraction of its
-            // diameter: as much for spheres of one size; a pair of unequal ones, which may
-            // fall short of the margin from the smaller's side, is taken by a later round if
-            // it closes.
-            let margin = if round == 0 { FALLBACK_MARGIN } else { 0.0 };
-            for &k in &bodies {
-                let k = k as usize;
-                candidates.clear();
-                let swept = self.boxes[k];
-                if margin > 0.0 {
-                    let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
-                    self.boxes[k].lo -= grow;
-                    self.boxes[k].hi += grow;
+        // does. The finishing sweeps and exact solves after the rounds change velocities
+        // too: the bodies they leave pressed are checked again, and any pair they bring
+        // together starts the rounds again (at most `FALLBACK_PASSES` times).
+        let (mut round, mut passes) = (0, 0);
+        loop {
+            let pass_start = self.resting.len();
+            while round <= FALLBACK_ROUNDS {
+                let known = self.resting.len();
+                self.clear_touched();
+                for &k in &bodies {
+                    self.touch(k);
                 }
-                self.broad
-                    .collect_overlapping(k, &self.boxes, &mut candidates);
-                self.boxes[k] = swept;
-                for &m in &candidates {
-                    let m = m as usize;
-                    // Each pair once: from its first body of this round's.
-                    if m == k || (m < k && self.is_touched(m)) {
-                        continue;
+                // The first round also takes pairs a little farther apart (see
+                // `FALLBACK_MARGIN`), found with each body's box grown by that fraction of its
+                // diameter: as much for spheres of one size; a pair of unequal ones, which may
+                // fall short of the margin from the smaller's side, is taken by a later round if
+                // it closes.
+                let margin = if round == 0 { FALLBACK_MARGIN } else { 0.0 };
+                for &k in &bodies {
+                    let k = k as usize;
+                    candidates.clear();
+                    let swept = self.boxes[k];
+                    if margin > 0.0 {
+                        let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
+                        self.boxes[k].lo -= grow;
+                        self.boxes[k].hi += grow;
                     }
-                    let (a, b) = (k.min(m), k.max(m));
-                    let key = (a as u32, b as u32);
-                    if self.fallback_pairs.binary_search(&key).is_ok() {
-                        continue;
+                    self.broad
+                        .collect_overlapping(k, &self.boxes, &mut candidates);
+                    self.boxes[k] = swept;
+                    for &m in &candidates {
+                        let m = m as usize;
+                        // Each pair once: from its first body of this round's.
+                        if m == k || (m < k && self.is_touched(m)) {
+                            continue;
+                        }
+                        let (a, b) = (k.min(m), k.max(m));
+                        let key = (a as u32, b as u32);
+                        if self.fallback_pairs.binary_search(&key).is_ok() {
+                            continue;
+                        }
+                        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+                        if sa.is_fixed() && sb.is_fixed() {
+                            continue;
+                        }
+                        let d = sb.position - sa.position;
+                        let distance = d.length();
+                        if distance == 0.0 {
+                            continue;
+                        }
+                        let normal = d / distance;
+                        let reach = sa.radius() + sb.radius();
+                        let band = contact_band(sa, sb, ctx.settings);
+                        let approach = -(sb.velocity - sa.velocity).dot(normal);
+                        let gap = distance - reach;
+                        // Pairs that cannot come within half the band by the step's end need
+                        // nothing (yet).
+                        if approach * rest + margin * reach < gap - 0.5 * band {
+                            continue;
+                        }
+                        let press = self.start_press(a, b, normal);
+                        let smaller = sa.radius().min(sb.radius());
+                        let allowed = if gap > 0.0 {
+                            (gap - 0.5 * band).max(0.0) / rest
+                        } else {
+                            -self.correction(-gap, band, press, smaller, ctx)
+                        };
+                        // A deep overlap's push is held back, for the solve of the pushes after
+                        // the rounds, which takes it off at the step's end: against a fixed
+                        // sphere, solved with the load, the pushes on nearly opposite sides of a
+                        // ball fallen into a gap narrower than it sent it off at 28 m/s; between
+                        // dynamic spheres, left in the velocities, they flung an overlapping
+                        // crowd apart with no gravity (3 mJ to 1.8 kJ in a step). Held back, it
+                        // undoes the overlap over the rest of the step, not a whole one.
+                        let bias = if self.deep_push(-allowed, smaller, ctx) {
+                            let push =
+                                (-allowed * (ctx.dt / rest)).min(MAX_CORRECTION * smaller / ctx.dt);
+                            self.fallback_pushes.push((key.0, key.1, push));
+                            0.0
+                        } else {
+                            -allowed
+                        };
+                        self.tested.push(key);
+                        self.push_resting(key.0, key.1, normal, bias, press, gap > band);
                     }
-                    let (sa, sb) = (&self.segments[a], &self.segments[b]);
-                    if sa.is_fixed() && sb.is_fixed() {
-                        continue;
-                    }
-                    let d = sb.position - sa.position;
-                    let distance = d.length();
-                    if distance == 0.0 {
-                        continue;
-                    }
-                    let normal = d / distance;
-                    let reach = sa.radius() + sb.radius();
-                    let band = contact_band(sa, sb, ctx.settings);
-                    let approach = -(sb.velocity - sa.velocity).dot(normal);
-                    let gap = distance - reach;
-                    // Pairs that cannot come within half the band by the step's end need
-                    // nothing (yet).
-                    if approach * rest + margin * reach < gap - 0.5 * band {
-                        continue;
-                    }
-                    let press = self.start_press(a, b, normal);
-                    let smaller = sa.radius().min(sb.radius());
-                    let allowed = if gap > 0.0 {
-                        (gap - 0.5 * band).max(0.0) / rest
-                    } else {
-                        -self.correction(-gap, band, press, smaller, ctx)
-                    };
-                    // A deep overlap's push is held back, for the solve of the pushes after
-                    // the rounds, which takes it off at the step's end: against a fixed
-                    // sphere, solved with the load, the pushes on nearly opposite sides of a
-                    // ball fallen into a gap narrower than it sent it off at 28 m/s; between
-                    // dynamic spheres, left in the velocities, they flung an overlapping
-                    // crowd apart with no gravity (3 mJ to 1.8 kJ in a step). Held back, it
-                    // undoes the overlap over the rest of the step, not a whole one.
-                    let bias = if self.deep_push(-allowed, smaller, ctx) {
-                        let push =
-                            (-allowed * (ctx.dt / rest)).min(MAX_CORRECTION * smaller / ctx.dt);
-                        self.fallback_pushes.push((key.0, key.1, push));
-                        0.0
-                    } else {
-                        -allowed
-                    };
-                    self.tested.push(key);
-                    self.push_resting(key.0, key.1, normal, bias, press, gap > band);
                 }
+                if self.resting.len() == known {
+                    break;
+                }
+                if round == FALLBACK_ROUNDS {
+                    // Out of rounds: these pairs are left to meet unresolved, and said so.
+                    let left = self.resting.len() - known;
+                    stats.collisions_deferred = stats
+                        .collisions_deferred
+                        .saturating_add(u32::try_from(left).unwrap_or(u32::MAX));
+                    self.resting.truncate(known);
+                    round = FALLBACK_ROUNDS + 1;
+                    break;
+                }
+                self.fallback_pairs
+                    .extend(self.resting[known..].iter().map(|c| (c.a, c.b)));
+                self.fallback_pairs.sort_unstable();
+                self.order_resting(ctx);
+                // Converged as the step's resting solve is (see `solve_resting`), or as far as the
+                // round's sweeps go.
+                let threshold = self.sweep_threshold();
+                let sweeps = if round == 0 {
+                    RESTING_SWEEPS
+                } else {
+                    FALLBACK_LATER_SWEEPS
+                };
+                self.sweep_resting(threshold, sweeps);
+                bodies.clear();
+                self.clear_touched();
+                for k in 0..self.resting.len() {
+                    let c = self.resting[k];
+                    if c.impulse > 0.0 {
+                        self.touch(c.a);
+                        self.touch(c.b);
+                    }
+                }
+                bodies.extend_from_slice(&self.touched);
+                // Their boxes from now on, for the next round's candidates.
+                for &k in &bodies {
+                    let k = k as usize;
+                    self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+                    self.broad.update(k, &self.boxes[k]);
+                }
+                round += 1;
             }
-            if self.resting.len() == known {
+            // A long chain (a fast sphere driven into a line of many, each contact closing the
+            // next) passes its impulses on about one contact a sweep, and the rounds' sweeps can
+            // leave it closing through itself: go on while any pair would end the step deeper than
+            // it is allowed by more than a hundredth of the smaller radius (a line of 100 spheres
+            // struck at 1 km/s ended 2 cm into itself), up to `FALLBACK_FINISH_SWEEPS` more. A
+            // landing pit seldom leaves a pair that deep (its 10 000 never; the 1000 now and then).
+            // Stopped, too, when four batches of sweeps in a row each leave the excess (summed over
+            // the contacts) no smaller than the batch before (a long chain's rises at first, then
+            // falls batch after batch): a set of contacts no velocities satisfy (a sphere pressed
+            // between fixed ones) would otherwise take every sweep, its impulses growing all the
+            // while.
+            if passes > 0 && self.resting.len() == pass_start {
                 break;
             }
-            if round == FALLBACK_ROUNDS {
-                // Out of rounds: these pairs are left to meet unresolved, and said so.
-                let left = self.resting.len() - known;
-                stats.collisions_deferred = stats
-                    .collisions_deferred
-                    .saturating_add(u32::try_from(left).unwrap_or(u32::MAX));
-                self.resting.truncate(known);
-                break;
-            }
-            self.fallback_pairs
-                .extend(self.resting[known..].iter().map(|c| (c.a, c.b)));
-            self.fallback_pairs.sort_unstable();
-            self.order_resting(ctx);
-            // Converged as the step's resting solve is (see `solve_resting`), or as far as the
-            // round's sweeps go.
             let threshold = self.sweep_threshold();
-            let sweeps = if round == 0 {
-                RESTING_SWEEPS
-            } else {
-                FALLBACK_LATER_SWEEPS
-            };
-            self.sweep_resting(threshold, sweeps);
+            let swept = self.finish_sweeps(threshold, rest, ctx);
+            let solved = self.solve_deep_groups_exactly(rest, false, ctx);
+            passes += 1;
+            if !(swept || solved) || passes == FALLBACK_PASSES || round > FALLBACK_ROUNDS {
+                break;
+            }
+            // The next pass's rounds start from the bodies pressed now (none takes the first
+            // round's margin again).
+            round = round.max(1);
             bodies.clear();
             self.clear_touched();
             for k in 0..self.resting.len() {
@@ -451,27 +499,13 @@ impl Solver {
                 }
             }
             bodies.extend_from_slice(&self.touched);
-            // Their boxes from now on, for the next round's candidates.
             for &k in &bodies {
                 let k = k as usize;
                 self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
                 self.broad.update(k, &self.boxes[k]);
             }
         }
-        // A long chain (a fast sphere driven into a line of many, each contact closing the
-        // next) passes its impulses on about one contact a sweep, and the rounds' sweeps can
-        // leave it closing through itself: go on while any pair would end the step deeper than
-        // it is allowed by more than a hundredth of the smaller radius (a line of 100 spheres
-        // struck at 1 km/s ended 2 cm into itself), up to `FALLBACK_FINISH_SWEEPS` more. A
-        // landing pit seldom leaves a pair that deep (its 10 000 never; the 1000 now and then).
-        // Stopped, too, when four batches of sweeps in a row each leave the excess (summed over
-        // the contacts) no smaller than the batch before (a long chain's rises at first, then
-        // falls batch after batch): a set of contacts no velocities satisfy (a sphere pressed
-        // between fixed ones) would otherwise take every sweep, its impulses growing all the
-        // while.
         let threshold = self.sweep_threshold();
-        self.finish_sweeps(threshold, rest, ctx);
-        self.solve_deep_groups_exactly(rest, false, ctx);
         // The deep pushes held back above go on top, as the step's resting solve's do (see
         // `solve_pushes`), and are finished the same way: undone by the step's end, a long
         // chain's overlaps would come back deeper every step.
@@ -529,7 +563,8 @@ impl Solver {
     /// The fallback's finishing sweeps (see [`Solver::fall_back`]): on while any contact
     /// would end the `rest` of the step deeper than it is allowed (see `fallback_excess`), up
     /// to [`FALLBACK_FINISH_SWEEPS`], and until four batches in a row leave that no smaller.
-    fn finish_sweeps(&mut self, threshold: f64, rest: f64, ctx: &StepContext<'_>) {
+    /// Returns whether it swept at all.
+    fn finish_sweeps(&mut self, threshold: f64, rest: f64, ctx: &StepContext<'_>) -> bool {
         let (mut finishing, mut stalled) = (0, 0);
         let mut excess = self.fallback_excess(rest, ctx);
         while finishing < FALLBACK_FINISH_SWEEPS && excess > 0.0 && stalled < 4 {
@@ -539,6 +574,7 @@ impl Solver {
             stalled = if left < excess { 0 } else { stalled + 1 };
             excess = left;
         }
+        finishing > 0
     }
 
     /// When the resting contacts' sweeps have converged: no impulse changes a relative speed
@@ -570,13 +606,14 @@ impl Solver {
     /// fallback, which has no such check), only their allowed approaches are: pushes met in
     /// full on nearly opposite sides of a sphere part it many times faster than either. Not
     /// run where the resting solve solves its pushes apart (a deep overlap somewhere, or
-    /// pushes that sent a body off too fast: see `solve_pushes`).
+    /// pushes that sent a body off too fast: see `solve_pushes`). Returns whether it solved
+    /// any group.
     pub(super) fn solve_deep_groups_exactly(
         &mut self,
         rest: f64,
         pushes: bool,
         ctx: &StepContext<'_>,
-    ) {
+    ) -> bool {
         // With nothing accelerating, no resting solve stops what the fallback leaves closing
         // in the steps after: close by more than half the band, and the group is solved.
         let deep_fraction = if pushes || !self.nothing_accelerates {
@@ -587,10 +624,11 @@ impl Solver {
         let deep =
             |solver: &Self, c: &RestingContact| solver.excess(c, rest, deep_fraction, ctx) > 0.0;
         if !self.resting.iter().any(|c| deep(self, c)) {
-            return;
+            return false;
         }
         let mut events = std::mem::take(&mut self.exact.events);
         let mut ranges = std::mem::take(&mut self.exact.ranges);
+        let mut solved = false;
         events.clear();
         events.extend(self.resting.iter().enumerate().map(|(i, c)| Event {
             time: 0.0,
@@ -613,10 +651,12 @@ impl Solver {
                     .any(|e| deep(self, &self.resting[e.version_a as usize]))
             {
                 self.solve_resting_group_exactly(group, pushes);
+                solved = true;
             }
         }
         self.exact.events = events;
         self.exact.ranges = ranges;
+        solved
     }
 
     /// [`Solver::solve_deep_groups_exactly`] for one group (its contacts are the resting

@@ -341,141 +341,18 @@ impl Solver {
         let (mut round, mut passes) = (0, 0);
         loop {
             let pass_start = self.resting.len();
-            while round <= FALLBACK_ROUNDS {
-                let known = self.resting.len();
-                self.clear_touched();
-                for &k in &bodies {
-                    self.touch(k);
-                }
-                // The first round also takes pairs a little farther apart (see
-                // `FALLBACK_MARGIN`), found with each body's box grown by that fraction of its
-                // diameter: as much for spheres of one size; a pair of unequal ones, which may
-                // fall short of the margin from the smaller's side, is taken by a later round if
-                // it closes.
-                let margin = if round == 0 { FALLBACK_MARGIN } else { 0.0 };
-                for &k in &bodies {
-                    let k = k as usize;
-                    candidates.clear();
-                    let swept = self.boxes[k];
-                    if margin > 0.0 {
-                        let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
-                        self.boxes[k].lo -= grow;
-                        self.boxes[k].hi += grow;
-                    }
-                    self.broad
-                        .collect_overlapping(k, &self.boxes, &mut candidates);
-                    self.boxes[k] = swept;
-                    for &m in &candidates {
-                        let m = m as usize;
-                        // Each pair once: from its first body of this round's.
-                        if m == k || (m < k && self.is_touched(m)) {
-                            continue;
-                        }
-                        let (a, b) = (k.min(m), k.max(m));
-                        let key = (a as u32, b as u32);
-                        if self.fallback_pairs.binary_search(&key).is_ok() {
-                            continue;
-                        }
-                        let (sa, sb) = (&self.segments[a], &self.segments[b]);
-                        if sa.is_fixed() && sb.is_fixed() {
-                            continue;
-                        }
-                        let d = sb.position - sa.position;
-                        let distance = d.length();
-                        if distance == 0.0 {
-                            continue;
-                        }
-                        let normal = d / distance;
-                        let reach = sa.radius() + sb.radius();
-                        let band = contact_band(sa, sb, ctx.settings);
-                        let approach = -(sb.velocity - sa.velocity).dot(normal);
-                        let gap = distance - reach;
-                        // Pairs that cannot come within half the band by the step's end need
-                        // nothing (yet).
-                        if approach * rest + margin * reach < gap - 0.5 * band {
-                            continue;
-                        }
-                        let press = self.start_press(a, b, normal);
-                        let smaller = sa.radius().min(sb.radius());
-                        let allowed = if gap > 0.0 {
-                            (gap - 0.5 * band).max(0.0) / rest
-                        } else {
-                            -self.correction(-gap, band, press, smaller, ctx)
-                        };
-                        // A deep overlap's push is held back, for the solve of the pushes after
-                        // the rounds, which takes it off at the step's end: against a fixed
-                        // sphere, solved with the load, the pushes on nearly opposite sides of a
-                        // ball fallen into a gap narrower than it sent it off at 28 m/s; between
-                        // dynamic spheres, left in the velocities, they flung an overlapping
-                        // crowd apart with no gravity (3 mJ to 1.8 kJ in a step). Held back, it
-                        // undoes the overlap over the rest of the step, not a whole one.
-                        let bias = if self.deep_push(-allowed, smaller, ctx) {
-                            let push =
-                                (-allowed * (ctx.dt / rest)).min(MAX_CORRECTION * smaller / ctx.dt);
-                            self.fallback_pushes.push((key.0, key.1, push));
-                            0.0
-                        } else {
-                            -allowed
-                        };
-                        self.tested.push(key);
-                        self.push_resting(key.0, key.1, normal, bias, press, gap > band);
-                    }
-                }
-                if self.resting.len() == known {
-                    break;
-                }
-                if round == FALLBACK_ROUNDS {
-                    // Out of rounds: these pairs are left to meet unresolved, and said so.
-                    let left = self.resting.len() - known;
-                    stats.collisions_deferred = stats
-                        .collisions_deferred
-                        .saturating_add(u32::try_from(left).unwrap_or(u32::MAX));
-                    self.resting.truncate(known);
-                    round = FALLBACK_ROUNDS + 1;
-                    break;
-                }
-                self.fallback_pairs
-                    .extend(self.resting[known..].iter().map(|c| (c.a, c.b)));
-                self.fallback_pairs.sort_unstable();
-                self.order_resting(ctx);
-                // Converged as the step's resting solve is (see `solve_resting`), or as far as the
-                // round's sweeps go.
-                let threshold = self.sweep_threshold();
-                let sweeps = if round == 0 {
-                    RESTING_SWEEPS
-                } else {
-                    FALLBACK_LATER_SWEEPS
-                };
-                self.sweep_resting(threshold, sweeps);
-                bodies.clear();
-                self.clear_touched();
-                for k in 0..self.resting.len() {
-                    let c = self.resting[k];
-                    if c.impulse > 0.0 {
-                        self.touch(c.a);
-                        self.touch(c.b);
-                    }
-                }
-                bodies.extend_from_slice(&self.touched);
-                // Their boxes from now on, for the next round's candidates.
-                for &k in &bodies {
-                    let k = k as usize;
-                    self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
-                    self.broad.update(k, &self.boxes[k]);
-                }
-                round += 1;
-            }
-            // A long chain (a fast sphere driven into a line of many, each contact closing the
-            // next) passes its impulses on about one contact a sweep, and the rounds' sweeps can
-            // leave it closing through itself: go on while any pair would end the step deeper than
-            // it is allowed by more than a hundredth of the smaller radius (a line of 100 spheres
-            // struck at 1 km/s ended 2 cm into itself), up to `FALLBACK_FINISH_SWEEPS` more. A
-            // landing pit seldom leaves a pair that deep (its 10 000 never; the 1000 now and then).
-            // Stopped, too, when four batches of sweeps in a row each leave the excess (summed over
-            // the contacts) no smaller than the batch before (a long chain's rises at first, then
-            // falls batch after batch): a set of contacts no velocities satisfy (a sphere pressed
-            // between fixed ones) would otherwise take every sweep, its impulses growing all the
-            // while.
+            self.fallback_rounds(&mut round, &mut bodies, &mut candidates, rest, ctx, stats);
+            // A long chain (a fast sphere driven into a line of many, each contact closing
+            // the next) passes its impulses on about one contact a sweep, and the rounds'
+            // sweeps can leave it closing through itself: go on while any pair would end the
+            // step deeper than it is allowed by more than a hundredth of the smaller radius (a
+            // line of 100 spheres struck at 1 km/s ended 2 cm into itself), up to
+            // `FALLBACK_FINISH_SWEEPS` more. A landing pit seldom leaves a pair that deep (its
+            // 10 000 never; the 1000 now and then). Stopped, too, when four batches of sweeps
+            // in a row each leave the excess (summed over the contacts) no smaller than the
+            // batch before (a long chain's rises at first, then falls batch after batch): a
+            // set of contacts no velocities satisfy (a sphere pressed between fixed ones)
+            // would otherwise take every sweep, its impulses growing all the while.
             if passes > 0 && self.resting.len() == pass_start {
                 break;
             }
@@ -489,21 +366,7 @@ impl Solver {
             // The next pass's rounds start from the bodies pressed now (none takes the first
             // round's margin again).
             round = round.max(1);
-            bodies.clear();
-            self.clear_touched();
-            for k in 0..self.resting.len() {
-                let c = self.resting[k];
-                if c.impulse > 0.0 {
-                    self.touch(c.a);
-                    self.touch(c.b);
-                }
-            }
-            bodies.extend_from_slice(&self.touched);
-            for &k in &bodies {
-                let k = k as usize;
-                self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
-                self.broad.update(k, &self.boxes[k]);
-            }
+            self.pressed_bodies(&mut bodies, ctx);
         }
         let threshold = self.sweep_threshold();
         // The deep pushes held back above go on top, as the step's resting solve's do (see
@@ -558,6 +421,150 @@ impl Solver {
         self.candidates = candidates;
         self.clear_touched();
         stats.fell_back = true;
+    }
+
+    /// The fallback's rounds (see [`Solver::fall_back`]), from round `round` on, each taking
+    /// the pairs of `bodies` that may come within the band over the `rest` of the step and
+    /// sweeping, until a round adds none; after [`FALLBACK_ROUNDS`] the pairs still added are
+    /// left unsolved and counted as deferred (and `round` is left past it).
+    fn fallback_rounds(
+        &mut self,
+        round: &mut usize,
+        bodies: &mut Vec<u32>,
+        candidates: &mut Vec<u32>,
+        rest: f64,
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        while *round <= FALLBACK_ROUNDS {
+            let known = self.resting.len();
+            self.clear_touched();
+            for &k in bodies.iter() {
+                self.touch(k);
+            }
+            // The first round also takes pairs a little farther apart (see
+            // `FALLBACK_MARGIN`), found with each body's box grown by that fraction of its
+            // diameter: as much for spheres of one size; a pair of unequal ones, which may
+            // fall short of the margin from the smaller's side, is taken by a later round if
+            // it closes.
+            let margin = if *round == 0 { FALLBACK_MARGIN } else { 0.0 };
+            for &k in bodies.iter() {
+                let k = k as usize;
+                candidates.clear();
+                let swept = self.boxes[k];
+                if margin > 0.0 {
+                    let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
+                    self.boxes[k].lo -= grow;
+                    self.boxes[k].hi += grow;
+                }
+                self.broad.collect_overlapping(k, &self.boxes, candidates);
+                self.boxes[k] = swept;
+                for &m in candidates.iter() {
+                    let m = m as usize;
+                    // Each pair once: from its first body of this round's.
+                    if m == k || (m < k && self.is_touched(m)) {
+                        continue;
+                    }
+                    let (a, b) = (k.min(m), k.max(m));
+                    let key = (a as u32, b as u32);
+                    if self.fallback_pairs.binary_search(&key).is_ok() {
+                        continue;
+                    }
+                    let (sa, sb) = (&self.segments[a], &self.segments[b]);
+                    if sa.is_fixed() && sb.is_fixed() {
+                        continue;
+                    }
+                    let d = sb.position - sa.position;
+                    let distance = d.length();
+                    if distance == 0.0 {
+                        continue;
+                    }
+                    let normal = d / distance;
+                    let reach = sa.radius() + sb.radius();
+                    let band = contact_band(sa, sb, ctx.settings);
+                    let approach = -(sb.velocity - sa.velocity).dot(normal);
+                    let gap = distance - reach;
+                    // Pairs that cannot come within half the band by the step's end need
+                    // nothing (yet).
+                    if approach * rest + margin * reach < gap - 0.5 * band {
+                        continue;
+                    }
+                    let press = self.start_press(a, b, normal);
+                    let smaller = sa.radius().min(sb.radius());
+                    let allowed = if gap > 0.0 {
+                        (gap - 0.5 * band).max(0.0) / rest
+                    } else {
+                        -self.correction(-gap, band, press, smaller, ctx)
+                    };
+                    // A deep overlap's push is held back, for the solve of the pushes after
+                    // the rounds, which takes it off at the step's end: against a fixed
+                    // sphere, solved with the load, the pushes on nearly opposite sides of a
+                    // ball fallen into a gap narrower than it sent it off at 28 m/s; between
+                    // dynamic spheres, left in the velocities, they flung an overlapping
+                    // crowd apart with no gravity (3 mJ to 1.8 kJ in a step). Held back, it
+                    // undoes the overlap over the rest of the step, not a whole one.
+                    let bias = if self.deep_push(-allowed, smaller, ctx) {
+                        let push =
+                            (-allowed * (ctx.dt / rest)).min(MAX_CORRECTION * smaller / ctx.dt);
+                        self.fallback_pushes.push((key.0, key.1, push));
+                        0.0
+                    } else {
+                        -allowed
+                    };
+                    self.tested.push(key);
+                    self.push_resting(key.0, key.1, normal, bias, press, gap > band);
+                }
+            }
+            if self.resting.len() == known {
+                break;
+            }
+            if *round == FALLBACK_ROUNDS {
+                // Out of rounds: these pairs are left to meet unresolved, and said so.
+                let left = self.resting.len() - known;
+                stats.collisions_deferred = stats
+                    .collisions_deferred
+                    .saturating_add(u32::try_from(left).unwrap_or(u32::MAX));
+                self.resting.truncate(known);
+                *round = FALLBACK_ROUNDS + 1;
+                break;
+            }
+            self.fallback_pairs
+                .extend(self.resting[known..].iter().map(|c| (c.a, c.b)));
+            self.fallback_pairs.sort_unstable();
+            self.order_resting(ctx);
+            // Converged as the step's resting solve is (see `solve_resting`), or as far as the
+            // round's sweeps go.
+            let threshold = self.sweep_threshold();
+            let sweeps = if *round == 0 {
+                RESTING_SWEEPS
+            } else {
+                FALLBACK_LATER_SWEEPS
+            };
+            self.sweep_resting(threshold, sweeps);
+            // Their boxes from now on, for the next round's candidates.
+            self.pressed_bodies(bodies, ctx);
+            *round += 1;
+        }
+    }
+
+    /// Sets `bodies` to the bodies of the resting contacts that took an impulse, and gives
+    /// them their boxes from now on in the broad phase.
+    fn pressed_bodies(&mut self, bodies: &mut Vec<u32>, ctx: &StepContext<'_>) {
+        bodies.clear();
+        self.clear_touched();
+        for k in 0..self.resting.len() {
+            let c = self.resting[k];
+            if c.impulse > 0.0 {
+                self.touch(c.a);
+                self.touch(c.b);
+            }
+        }
+        bodies.extend_from_slice(&self.touched);
+        for &k in bodies.iter() {
+            let k = k as usize;
+            self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
+            self.broad.update(k, &self.boxes[k]);
+        }
     }
 
     /// The fallback's finishing sweeps (see [`Solver::fall_back`]): on while any contact

@@ -566,8 +566,9 @@ const FALLBACK_MARGIN: f64 = 0.1;
 /// `Solver::push_on`).
 const FALLBACK_FINISH_SWEEPS: u32 = 1024;
 
-/// How many times the fallback's rounds may start again after its finishing sweeps and exact
-/// solves (see `Solver::fall_back`).
+/// The most passes of the fallback (each its rounds, then its finishing sweeps and exact
+/// solves; a pass after the first only if the one before changed velocities and brought a new
+/// pair together: see `Solver::fall_back`).
 const FALLBACK_PASSES: u32 = 4;
 
 /// The most Gauss–Seidel sweeps over the resting contacts in one step.

@@ -337,7 +337,7 @@ impl Solver {
         // adding the pairs the last one's changes could bring within the band, until none
         // does. The finishing sweeps and exact solves after the rounds change velocities
         // too: the bodies they leave pressed are checked again, and any pair they bring
-        // together starts the rounds again (at most `FALLBACK_PASSES` times).
+        // together starts the rounds again (at most `FALLBACK_PASSES` passes in all).
         let (mut round, mut passes) = (0, 0);
         loop {
             let pass_start = self.resting.len();

@@ -821,16 +821,19 @@ impl Solver {
                     (self.segments[b].velocity - self.segments[a].velocity).dot(c.normal) - c.bias;
                 let next = (c.impulse - speed * c.mass).max(0.0);
                 let step = next - c.impulse;
-                if step != 0.0 {
-                    c.impulse = next;
-                    if ima != 0.0 {
-                        self.segments[a].velocity -= c.normal * (step * ima);
-                    }
-                    if imb != 0.0 {
-                        self.segments[b].velocity += c.normal * (step * imb);
-                    }
-                    largest = largest.max((step * (ima + imb)).abs());
+                // Applied even when 0 (a contact held at no impulse, or unchanged): whether it
+                // is is a coin toss the branch predictor lost, and adding a zero leaves the
+                // velocities' values as they were, a zero's sign aside (the pit of 1000 at
+                // rest 7% faster, the benchmarks' digests the same).
+                // A fixed body's is never written: its contacts would wait on one another.
+                c.impulse = next;
+                if ima != 0.0 {
+                    self.segments[a].velocity -= c.normal * (step * ima);
                 }
+                if imb != 0.0 {
+                    self.segments[b].velocity += c.normal * (step * imb);
+                }
+                largest = largest.max((step * (ima + imb)).abs());
                 let moved = c.impulse - c.before;
                 change += moved * moved;
             }
@@ -848,11 +851,13 @@ impl Solver {
             }
             for c in &mut self.resting {
                 let next = conjugate_step(c.impulse, c.impulse - c.before, &mut c.direction, beta);
-                if next != c.impulse {
-                    let extra = next - c.impulse;
-                    c.impulse = next;
-                    let (a, b) = (c.a as usize, c.b as usize);
+                let extra = next - c.impulse;
+                c.impulse = next;
+                let (a, b) = (c.a as usize, c.b as usize);
+                if c.inverse_mass_a != 0.0 {
                     self.segments[a].velocity -= c.normal * (extra * c.inverse_mass_a);
+                }
+                if c.inverse_mass_b != 0.0 {
                     self.segments[b].velocity += c.normal * (extra * c.inverse_mass_b);
                 }
                 c.before = c.impulse;

@@ -48,8 +48,8 @@ pub struct Settings {
     /// pressed by the spheres above harder than by its own weight (the creep grows with a
     /// contact's load), a few times that (3.1 times in the README's example pile of 2000),
     /// undone over the next steps; never past 1% of the smaller radius (a pair that would end
-    /// the step deeper is met as an impact). Default 0.01; 0 disables it. Without gravity or forces it
-    /// never applies.
+    /// the step deeper is met as an impact). Default 0.01; 0 disables it. Without gravity or
+    /// forces it never applies.
     pub creep_fraction: f64,
     /// Each [`World::step`] is taken as this many equal substeps (default 1). Integration error
     /// that grows with the step, such as a tethered pendulum's energy error at each impact

@@ -256,6 +256,10 @@ pub(crate) struct Solver {
     /// it, worked out once per step from the tolerance.
     apart: Apart,
     resting: Vec<RestingContact>,
+    /// Scratch for `Solver::order_resting`: each resting contact's sort key and place, and the
+    /// contacts in their new order.
+    resting_keys: Vec<(i64, u64, u32)>,
+    resting_sorted: Vec<RestingContact>,
     /// Scratch for [`Solver::fall_back`]: the pairs it has solved, sorted.
     fallback_pairs: Vec<(u32, u32)>,
     /// Scratch for [`Solver::fall_back`]: the deep pushes it holds back, `(a, b, push)`.

@@ -537,8 +537,6 @@ struct RestingContact {
     /// `Solver::solve_resting`).
     before: f64,
     direction: f64,
-    /// The contact point's height along gravity (see `Solver::order_resting`).
-    height: f64,
 }
 
 /// Whether segment `k` of `segments` is a dynamic body's (fixed ones join nothing).

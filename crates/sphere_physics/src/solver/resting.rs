@@ -127,7 +127,6 @@ impl Solver {
             speculative,
             before: 0.0,
             direction: 0.0,
-            height: 0.0,
         });
     }
 
@@ -775,15 +774,13 @@ impl Solver {
     pub(super) fn order_resting(&mut self, ctx: &StepContext<'_>) {
         if ctx.settings.gravity != DVec3::ZERO {
             let up = -ctx.settings.gravity;
-            // Each contact's height worked out once, not at each of the sort's comparisons
-            // (two segments read for each).
-            // Sorted as keys (24 bytes) and gathered once, not moved about whole (112 bytes)
-            // by the sort: by height (in `f64::total_cmp`'s order), then by pair.
+            // Sorted as keys (24 bytes: each contact's height worked out once, in
+            // `f64::total_cmp`'s order, then its pair) and gathered once, not moved about whole
+            // (104 bytes) by the sort.
             self.resting_keys.clear();
-            for (n, c) in self.resting.iter_mut().enumerate() {
+            for (n, c) in self.resting.iter().enumerate() {
                 let a = &self.segments[c.a as usize];
-                c.height = (a.position + c.normal * a.radius()).dot(up);
-                let bits = c.height.to_bits() as i64;
+                let bits = (a.position + c.normal * a.radius()).dot(up).to_bits() as i64;
                 let height = bits ^ (((bits >> 63) as u64) >> 1) as i64;
                 let pair = (u64::from(c.a) << 32) | u64::from(c.b);
                 self.resting_keys.push((height, pair, n as u32));

@@ -252,6 +252,9 @@ pub(crate) struct Solver {
     /// The resting speed of the largest acceleration (a component's): the scale of what
     /// counts as resting this step.
     resting_speed: f64,
+    /// The most load a contact's warm start carries into the next step, an acceleration:
+    /// [`WARM_LOADS`] times the largest (a component's), or infinite if nothing accelerates.
+    warm_cap: f64,
     /// The distance within which a pair counts as touching, as [`cannot_touch_by`] reckons
     /// it, worked out once per step from the tolerance.
     apart: Apart,
@@ -587,6 +590,14 @@ const MAX_CORRECTION: f64 = 0.1;
 /// pair sink 6% of a radius into each other in a step.
 const CREEP_DEPTH: f64 = 0.01;
 
+/// The most load a contact's warm start carries into the next step, in multiples of the
+/// step's largest acceleration (see `Solver::keep_resting_loads`); the step's sweeps find any
+/// more it needs. A jammed ring of contacts (a bed's bottom layer wedged between two walls, a
+/// column zig-zagging up a chimney) has overlaps no velocities can undo: the sweeps' pushes
+/// against them cancel round the ring, and carried on whole, its loads grew without bound
+/// (to 5800 m/s² in 1.6 s in `regression_creep_under_jammed_loads.rs`'s pit).
+const WARM_LOADS: f64 = 64.0;
+
 /// How many times [`Solver::solve_pushes`] solves the resting contacts' pushes at most, each
 /// time with the pushes on a body pushed too fast scaled down by as much (a lone body's speed
 /// is linear in its pushes while the same contacts hold: it is at its cap after one).
@@ -730,6 +741,11 @@ impl Solver {
         self.creep_scale = settings.creep_fraction * self.resting_scale;
         self.near_reach = self.resting_scale * 3f64.sqrt() * largest_acceleration * dt;
         self.resting_speed = self.resting_scale * largest_acceleration;
+        self.warm_cap = if largest_acceleration > 0.0 {
+            WARM_LOADS * largest_acceleration
+        } else {
+            f64::INFINITY
+        };
         self.apart = Apart::new(settings.tolerance.epsilon());
 
         // First impacts of every pair whose swept boxes meet.

@@ -1159,8 +1159,9 @@ impl Solver {
         self.pushes.clear();
     }
 
-    /// After the resting solve: keeps its impulses for the next step's warm start, its loads
-    /// for this step's presses and the bodies that rested, and gives the bodies it changed
+    /// After the resting solve: keeps its impulses for the next step's warm start (each at
+    /// most [`WARM_LOADS`] times the largest acceleration, as a load), its loads for this
+    /// step's presses and the bodies that rested, and gives the bodies it changed
     /// their new drifts.
     fn keep_resting_loads(&mut self, ctx: &StepContext<'_>) {
         let resting = std::mem::take(&mut self.resting);
@@ -1172,6 +1173,7 @@ impl Solver {
             // no speed (see `solve_pushes`): started from the pushes, two contacts on nearly
             // opposite sides do not undo them within the sweeps.
             let warm = self.push_saved.get(n).map_or(c.impulse, |saved| saved.1);
+            let warm = warm.min(self.warm_cap * ctx.dt * c.mass);
             if warm > 0.0 {
                 self.next_warm.push((a.min(b), a.max(b), warm / ctx.dt));
             }

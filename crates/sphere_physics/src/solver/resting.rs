@@ -341,6 +341,9 @@ impl Solver {
         loop {
             let pass_start = self.resting.len();
             self.fallback_rounds(&mut round, &mut bodies, &mut candidates, rest, ctx, stats);
+            if passes > 0 && self.resting.len() == pass_start {
+                break;
+            }
             // A long chain (a fast sphere driven into a line of many, each contact closing
             // the next) passes its impulses on about one contact a sweep, and the rounds'
             // sweeps can leave it closing through itself: go on while any pair would end the
@@ -352,9 +355,6 @@ impl Solver {
             // batch before (a long chain's rises at first, then falls batch after batch): a
             // set of contacts no velocities satisfy (a sphere pressed between fixed ones)
             // would otherwise take every sweep, its impulses growing all the while.
-            if passes > 0 && self.resting.len() == pass_start {
-                break;
-            }
             let threshold = self.sweep_threshold();
             let swept = self.finish_sweeps(threshold, rest, ctx);
             let solved = self.solve_deep_groups_exactly(rest, false, ctx);

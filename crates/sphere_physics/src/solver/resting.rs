@@ -397,6 +397,7 @@ impl Solver {
             self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
             self.broad.update(k, &self.boxes[k]);
             self.check_bounded(k);
+            self.queue_bend_again(k, t, ctx.dt);
         }
         // The drifts are final now (the step's later impacts are deferred), and the pairs the
         // last changes bring together were tested nowhere: those that end the step overlapping
@@ -1154,6 +1155,7 @@ impl Solver {
             self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
             self.broad.update(k, &self.boxes[k]);
             self.touch(k as u32);
+            self.queue_bend_again(k, t, ctx.dt);
         }
         self.pushes = pushes;
         self.pushes.clear();
@@ -1218,15 +1220,24 @@ impl Solver {
             let k = self.touched[ti] as usize;
             let string = self.string_of(k);
             let segment = &mut self.segments[k];
+            let mut until = ctx.dt;
             if let Some(s) = string {
                 let strung = &mut self.strung[s];
                 strung.free_velocity = segment.velocity;
-                (segment.velocity, strung.taut, strung.sag) =
-                    chord(segment.position, segment.velocity, strung.tether, ctx.dt);
+                (segment.velocity, strung.taut, strung.sag, strung.until) = bend(
+                    segment.position,
+                    segment.velocity,
+                    strung.tether,
+                    segment.radius(),
+                    0.0,
+                    ctx.dt,
+                );
+                until = strung.until;
             }
             self.versions[k] += 1;
             self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
             self.check_bounded(k);
+            self.queue_bend(k, until, ctx.dt);
         }
     }
 

@@ -9,8 +9,8 @@
 //! each other.
 //!
 //! Now a chord that would cut more than a hundredth of its sphere's radius inside the arc
-//! is bent to reach the string's length sooner, and bent again there (at most sixteen
-//! pieces a step), so the cut stays within that hundredth.
+//! is bent to reach the string's length sooner, and bent again there, so the cut stays
+//! within that hundredth (unless a 64th of the step, the shortest piece, cuts deeper).
 
 use sphere_physics::glam::DVec3;
 use sphere_physics::{Settings, SphereDesc, World};

@@ -1658,6 +1658,51 @@ impl Solver {
         }
     }
 
+    /// A pair settled at `t` (its impact gave no impulse, on a taut string's tangent) whose
+    /// drifts still close, as a string's chord turning in towards the other sphere does: each
+    /// taut string of the pair bends its drift to reach the length (where it is bent again,
+    /// and the pair looked at again) before the chords close by more than [`STRING_SAG`] of
+    /// the smaller radius.
+    fn bend_sooner_if_closing(&mut self, a: usize, b: usize, t: f64, ctx: &StepContext<'_>) {
+        if !self.strings {
+            return;
+        }
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let d = sb.position_at(t) - sa.position_at(t);
+        let closing = -(sb.velocity - sa.velocity).dot(d) / d.length();
+        if closing > 0.0 {
+            let by = t + STRING_SAG * sa.radius().min(sb.radius()) / closing;
+            self.bend_sooner(a, by, t, ctx);
+            self.bend_sooner(b, by, t, ctx);
+        }
+    }
+
+    /// Bends segment `k`'s drift (taut on its string, from `t`) to reach the string's length
+    /// by `by` if that is sooner than it does (but not sooner than the shortest piece).
+    fn bend_sooner(&mut self, k: usize, by: f64, t: f64, ctx: &StepContext<'_>) {
+        let Some(s) = self.string_of(k) else {
+            return;
+        };
+        let strung = &mut self.strung[s];
+        let by = by.max(t + ctx.dt / STRING_PIECES);
+        if !strung.taut || by >= strung.until {
+            return;
+        }
+        let segment = &mut self.segments[k];
+        segment.advance_to(t);
+        (segment.velocity, strung.taut, strung.sag) = chord(
+            segment.position,
+            strung.free_velocity,
+            strung.tether,
+            by - t,
+        );
+        strung.until = by;
+        self.versions[k] += 1;
+        self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
+        self.check_bounded(k);
+        self.queue_bend(k, by, ctx.dt);
+    }
+
     /// Segment `k`'s drift has reached its string's length at `t` (see [`bend`]): it is put on
     /// the string, loses its outward speed (as at a step's end) and is bent again, and its
     /// pairs are sought again.
@@ -2145,6 +2190,7 @@ impl Solver {
             stats.collisions = stats.collisions.saturating_add(1);
             stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
             if impulse <= 0.0 {
+                self.bend_sooner_if_closing(a, b, t, ctx);
                 self.settled.push(Settled::now(&self.versions, a, b));
             } else if resting {
                 self.instant
@@ -2448,6 +2494,7 @@ impl Solver {
         self.set_velocity(a, r.velocity_a, t, ctx);
         self.set_velocity(b, r.velocity_b, t, ctx);
         if r.impulse <= 0.0 {
+            self.bend_sooner_if_closing(a, b, t, ctx);
             self.settled.push(Settled::now(&self.versions, a, b));
         } else if resting {
             self.instant

@@ -10,6 +10,11 @@
 //! already parts, and a push left at rounding's size is none (the pair settles, and is looked
 //! at again when the string catches its sphere). Found by the property test of strings among
 //! free spheres (`properties.rs`, a scene it drew at another seed).
+//!
+//! Since a pair settled on a string's tangent whose drifts still close has the string bend
+//! its sphere's drift sooner (see `regression_string_chord_cuts_inside_the_swing.rs`), this
+//! pair no longer sinks deep enough into each other to be pushed at all: it meets at rest at
+//! one step (eleven impacts, nine of them resting) and parts. The test holds that too.
 
 mod common;
 
@@ -89,7 +94,7 @@ fn a_resting_push_is_not_repeated_at_one_instant() {
     let mut world = common::strung_world(&spheres, gravity);
     let ids: Vec<BodyId> = world.bodies().iter().map(|b| b.id()).collect();
     let (strung, heavy) = (ids[1], ids[26]);
-    let mut pushes_seen = 0;
+    let (mut pushes_seen, mut resting_seen) = (0, 0);
     for step in 0..30 {
         world.step(1.0 / 30.0).unwrap();
         // Resting impacts of the pair that gave a real push, instant by instant.
@@ -124,6 +129,18 @@ fn a_resting_push_is_not_repeated_at_one_instant() {
             most < 8,
             "step {step}: the pair struck {most} times at one instant"
         );
+        resting_seen += world
+            .collisions()
+            .iter()
+            .filter(|c| (c.a, c.b) == (strung, heavy) && c.resting)
+            .count();
+        let bodies = world.bodies();
+        let (a, b) = (&bodies[1], &bodies[26]);
+        let overlap = a.radius() + b.radius() - (a.position() - b.position()).length();
+        assert!(
+            overlap < 0.005 * a.radius().min(b.radius()),
+            "step {step}: the pair ends {overlap} m into each other"
+        );
         let all = pushes.len();
         pushes.dedup();
         assert_eq!(
@@ -133,6 +150,8 @@ fn a_resting_push_is_not_repeated_at_one_instant() {
             world.collisions()
         );
     }
-    // The case is still met: the pair rests and is pushed apart.
-    assert!(pushes_seen > 0);
+    // The case is still met: the pair meets at rest; and it needs no push (it had one push,
+    // or five at one instant, before).
+    assert!(resting_seen > 0);
+    assert_eq!(pushes_seen, 0);
 }

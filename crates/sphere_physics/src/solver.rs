@@ -2664,15 +2664,20 @@ fn bend(
     t: f64,
     dt: f64,
 ) -> (DVec3, bool, f64, f64) {
-    let rest = dt - t;
-    let (bent, taut, sag) = chord(position, velocity, tether, rest);
-    let limit = STRING_SAG * radius;
     let from = position - tether.anchor;
-    let cut = if taut {
-        arc_cut(from, from + bent * rest, tether.length)
-    } else {
-        0.0
+    // The chord over `tau`, and how deep it cuts inside the arc.
+    let chord_over = |tau: f64| {
+        let (bent, taut, sag) = chord(position, velocity, tether, tau);
+        let cut = if taut {
+            arc_cut(from, from + bent * tau, tether.length)
+        } else {
+            0.0
+        };
+        (bent, taut, sag, cut)
     };
+    let rest = dt - t;
+    let (bent, taut, sag, cut) = chord_over(rest);
+    let limit = STRING_SAG * radius;
     if cut <= limit {
         return (bent, taut, sag, dt);
     }
@@ -2685,12 +2690,7 @@ fn bend(
         if t + piece >= dt {
             return (bent, taut, sag, dt);
         }
-        let (bent, taut, sag) = chord(position, velocity, tether, piece);
-        let cut = if taut {
-            arc_cut(from, from + bent * piece, tether.length)
-        } else {
-            0.0
-        };
+        let (bent, taut, sag, cut) = chord_over(piece);
         if cut <= limit || piece <= shortest {
             return (bent, taut, sag, t + piece);
         }

@@ -1218,26 +1218,8 @@ impl Solver {
         self.resting = resting;
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
-            let string = self.string_of(k);
-            let segment = &mut self.segments[k];
-            let mut until = ctx.dt;
-            if let Some(s) = string {
-                let strung = &mut self.strung[s];
-                strung.free_velocity = segment.velocity;
-                (segment.velocity, strung.taut, strung.sag, strung.until) = bend(
-                    segment.position,
-                    segment.velocity,
-                    strung.tether,
-                    segment.radius(),
-                    0.0,
-                    ctx.dt,
-                );
-                until = strung.until;
-            }
-            self.versions[k] += 1;
-            self.boxes[k] = swept_box(segment, ctx.dt, ctx.settings);
-            self.check_bounded(k);
-            self.queue_bend(k, until, ctx.dt);
+            let velocity = self.segments[k].velocity;
+            self.set_velocity(k, velocity, 0.0, ctx);
         }
     }
 

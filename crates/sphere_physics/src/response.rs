@@ -231,7 +231,15 @@ pub fn resolve_simultaneous(
         0.0
     };
     // `impulses` is the exact solve's scratch too: its answer is left in the first `n`.
-    if compress_exactly(inverse_masses, velocities, contacts, scale, false, impulses) {
+    if compress_exactly(
+        inverse_masses,
+        velocities,
+        contacts,
+        scale,
+        false,
+        None,
+        impulses,
+    ) {
         impulses.truncate(n);
         for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
             if *impulse > 0.0 {
@@ -362,13 +370,16 @@ pub const MAX_SEARCHED_CONTACTS: usize = 8;
 /// [`MAX_SEARCHED_CONTACTS`]). Contacts that duplicate one another have several answers (the
 /// velocities they leave are the same): any is kept. Leaves `λ` in `work`'s first `n` and
 /// returns true; false for larger groups, or when no set passes (rounding, or pivoting that
-/// does not settle in a group too large to search). `work` is scratch, kept by the caller.
+/// does not settle in a group too large to search). With a `guess` (a bit per contact), the
+/// pivoting starts from it, and no set is searched. `work` is scratch, kept by the caller.
+#[allow(clippy::too_many_arguments)]
 fn compress_exactly(
     inverse_masses: &[f64],
     velocities: &[DVec3],
     contacts: &[GroupContact],
     scale: f64,
     signed: bool,
+    guess: Option<u64>,
     work: &mut Vec<f64>,
 ) -> bool {
     let n = contacts.len();
@@ -452,9 +463,11 @@ fn compress_exactly(
     // below tries dozens. It may cycle, so it gets a few tries. Contacts at rest that
     // duplicate one another (a sphere pressed between two fixed ones on a line) make that
     // guess singular: then the approaching ones are guessed instead.
-    let mut set = (0..n)
-        .filter(|&i| b[i] < tolerance)
-        .fold(0u64, |bits, i| bits | 1 << i);
+    let mut set = guess.unwrap_or_else(|| {
+        (0..n)
+            .filter(|&i| b[i] < tolerance)
+            .fold(0u64, |bits, i| bits | 1 << i)
+    });
     let approaching = (0..n)
         .filter(|&i| b[i] < 0.0)
         .fold(0u64, |bits, i| bits | 1 << i);
@@ -479,7 +492,7 @@ fn compress_exactly(
         }
         set = next;
     }
-    if n > MAX_SEARCHED_CONTACTS {
+    if n > MAX_SEARCHED_CONTACTS || guess.is_some() {
         return false;
     }
     // Every active set, by size, then by bit pattern: deterministic, smallest first.
@@ -502,10 +515,14 @@ fn compress_exactly(
 /// and the fallback's pairs still apart), and no restitution: `impulses` gets each contact's
 /// impulse, and `velocities` are left as they were. False (and nothing found) for a larger
 /// group, or when no answer passes (see `compress_exactly`).
+///
+/// With a `guess` (a bit per contact), the pivoting starts from those contacts pushing, and
+/// false comes back if it does not settle (no search of every set).
 pub(crate) fn compress_with_signed_biases(
     inverse_masses: &[f64],
     velocities: &[DVec3],
     contacts: &[GroupContact],
+    guess: Option<u64>,
     impulses: &mut Vec<f64>,
 ) -> bool {
     let scale = contacts
@@ -520,7 +537,15 @@ pub(crate) fn compress_with_signed_biases(
             speed.max(bias)
         })
         .fold(0.0f64, f64::max);
-    if compress_exactly(inverse_masses, velocities, contacts, scale, true, impulses) {
+    if compress_exactly(
+        inverse_masses,
+        velocities,
+        contacts,
+        scale,
+        true,
+        guess,
+        impulses,
+    ) {
         impulses.truncate(contacts.len());
         true
     } else {

@@ -440,6 +440,13 @@ struct ExactScratch {
     velocities: Vec<DVec3>,
     contacts: Vec<GroupContact>,
     impulses: Vec<f64>,
+    /// The resting sweeps' blocks (see `Solver::order_blocks`): each resting contact's block
+    /// (`NOT_LOCAL` for one swept alone), each block's contacts (`block_members`, from
+    /// `block_starts[b]` to `block_starts[b + 1]`), and each body's block while they are found.
+    block_of: Vec<u32>,
+    block_starts: Vec<u32>,
+    block_members: Vec<u32>,
+    owner_block: Vec<u32>,
 }
 
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
@@ -597,6 +604,10 @@ const FALLBACK_PASSES: u32 = 4;
 
 /// The most Gauss–Seidel sweeps over the resting contacts in one step.
 const RESTING_SWEEPS: u32 = 64;
+
+/// How many times heavier a dynamic body must be than one resting against it for the lighter
+/// one's contacts to be solved together in the resting sweeps (see `Solver::find_blocks`).
+const BLOCK_RATIO: f64 = 10.0;
 
 /// The most of an overlap a resting contact's push undoes in one step, as a fraction of the
 /// smaller radius (see `Solver::correction`).

@@ -709,6 +709,7 @@ impl Solver {
             &x.inverse_masses,
             &x.velocities,
             &x.contacts,
+            None,
             &mut x.impulses,
         ) {
             apply_impulses(
@@ -797,6 +798,209 @@ impl Solver {
         }
     }
 
+    /// Finds the resting sweeps' blocks: a body much lighter than a dynamic one it rests
+    /// against ([`BLOCK_RATIO`]) has its contacts solved together, exactly, in each sweep
+    /// (those not owned by a lighter such body). Returns whether there are any.
+    fn find_blocks(&mut self) -> bool {
+        // A strung sphere's contacts stay in the plain sweeps: its string bends its velocity
+        // after the solve, which holds no string.
+        let free = |solver: &Self, c: &RestingContact| {
+            !solver.strings
+                || (solver.string_of(c.a as usize).is_none()
+                    && solver.string_of(c.b as usize).is_none())
+        };
+        let light = |solver: &Self, c: &RestingContact| {
+            ((c.inverse_mass_b != 0.0 && c.inverse_mass_a > BLOCK_RATIO * c.inverse_mass_b)
+                || (c.inverse_mass_a != 0.0 && c.inverse_mass_b > BLOCK_RATIO * c.inverse_mass_a))
+                && free(solver, c)
+        };
+        let mut x = std::mem::take(&mut self.exact);
+        x.block_of.clear();
+        x.block_starts.clear();
+        x.block_members.clear();
+        if !self.resting.iter().any(|c| light(self, c)) {
+            self.exact = x;
+            return false;
+        }
+        if x.owner_block.len() < self.segments.len() {
+            x.owner_block.resize(self.segments.len(), NOT_LOCAL);
+        }
+        // Owners get a mark first (u32::MAX - 1), then a block each as their contacts come.
+        const OWNER: u32 = NOT_LOCAL - 1;
+        for c in self.resting.iter().filter(|c| light(self, c)) {
+            let owner = if c.inverse_mass_a > c.inverse_mass_b {
+                c.a
+            } else {
+                c.b
+            };
+            x.owner_block[owner as usize] = OWNER;
+        }
+        let mut blocks = 0u32;
+        for c in &self.resting {
+            let (oa, ob) = (
+                x.owner_block[c.a as usize] != NOT_LOCAL,
+                x.owner_block[c.b as usize] != NOT_LOCAL,
+            );
+            let owner = match (oa, ob) {
+                _ if !free(self, c) => {
+                    x.block_of.push(NOT_LOCAL);
+                    continue;
+                }
+                (false, false) => {
+                    x.block_of.push(NOT_LOCAL);
+                    continue;
+                }
+                (true, false) => c.a,
+                (false, true) => c.b,
+                (true, true) if c.inverse_mass_b > c.inverse_mass_a => c.b,
+                (true, true) => c.a,
+            };
+            let slot = &mut x.owner_block[owner as usize];
+            if *slot == OWNER {
+                *slot = blocks;
+                blocks += 1;
+            }
+            x.block_of.push(*slot);
+        }
+        // Each block's members, in the sweep's order (a counting sort).
+        x.block_starts.resize(blocks as usize + 1, 0);
+        for &b in x.block_of.iter().filter(|&&b| b != NOT_LOCAL) {
+            x.block_starts[b as usize + 1] += 1;
+        }
+        for b in 0..blocks as usize {
+            x.block_starts[b + 1] += x.block_starts[b];
+        }
+        x.block_members
+            .resize(x.block_starts[blocks as usize] as usize, 0);
+        // Each member to its block's next place (`block_starts[b]` counts up to block `b + 1`'s
+        // start as it fills, and is moved back after).
+        for (k, &b) in x.block_of.iter().enumerate() {
+            if b != NOT_LOCAL {
+                let at = &mut x.block_starts[b as usize];
+                x.block_members[*at as usize] = k as u32;
+                *at += 1;
+            }
+        }
+        x.block_starts.rotate_right(1);
+        x.block_starts[0] = 0;
+        for c in &self.resting {
+            x.owner_block[c.a as usize] = NOT_LOCAL;
+            x.owner_block[c.b as usize] = NOT_LOCAL;
+        }
+        self.exact = x;
+        true
+    }
+
+    /// Solves block `b`'s contacts (see [`Solver::find_blocks`]) together, exactly, from the
+    /// velocities without their impulses; point by point if the exact solve finds no answer.
+    /// Returns the largest change of a relative speed and the impulses' squared change since
+    /// `before`, as a sweep counts them.
+    fn sweep_block(&mut self, b: usize, restarted: bool, threshold: f64) -> (f64, f64) {
+        let x = &mut self.exact;
+        let members = x.block_starts[b] as usize..x.block_starts[b + 1] as usize;
+        x.bodies.clear();
+        x.inverse_masses.clear();
+        x.velocities.clear();
+        x.contacts.clear();
+        if x.index.len() < self.segments.len() {
+            x.index.resize(self.segments.len(), NOT_LOCAL);
+        }
+        for m in members.clone() {
+            let c = &mut self.resting[x.block_members[m] as usize];
+            if restarted {
+                c.direction = c.impulse - c.before;
+                c.before = c.impulse;
+            }
+            for (k, inverse_mass) in [(c.a, c.inverse_mass_a), (c.b, c.inverse_mass_b)] {
+                let slot = &mut x.index[k as usize];
+                if *slot == NOT_LOCAL {
+                    *slot = x.bodies.len() as u32;
+                    x.bodies.push(k);
+                    x.inverse_masses.push(inverse_mass);
+                    x.velocities.push(self.segments[k as usize].velocity);
+                }
+            }
+            let (a, bb) = (
+                x.index[c.a as usize] as usize,
+                x.index[c.b as usize] as usize,
+            );
+            x.velocities[a] += c.normal * (c.impulse * c.inverse_mass_a);
+            x.velocities[bb] -= c.normal * (c.impulse * c.inverse_mass_b);
+            x.contacts.push(GroupContact {
+                a,
+                b: bb,
+                normal: c.normal,
+                restitution: 0.0,
+                bias: c.bias,
+                string: false,
+            });
+        }
+        for &k in &x.bodies {
+            x.index[k as usize] = NOT_LOCAL;
+        }
+        // Nothing to do where no contact of the block would move by more than `threshold`
+        // on its own (a bed at rest, after its first sweeps).
+        let settled = members.clone().all(|m| {
+            let c = &self.resting[x.block_members[m] as usize];
+            let speed = (self.segments[c.b as usize].velocity
+                - self.segments[c.a as usize].velocity)
+                .dot(c.normal)
+                - c.bias;
+            let next = (c.impulse - speed * c.mass).max(0.0);
+            ((next - c.impulse) * (c.inverse_mass_a + c.inverse_mass_b)).abs() <= threshold
+        });
+        if settled {
+            let change = members
+                .map(|m| {
+                    let c = &self.resting[x.block_members[m] as usize];
+                    (c.impulse - c.before) * (c.impulse - c.before)
+                })
+                .sum();
+            return (0.0, change);
+        }
+        // Pivoting from the contacts pushing now (a block's set changes little from sweep to
+        // sweep).
+        let exact = members.len() <= MAX_EXACT_CONTACTS && {
+            let guess = x.block_members[members.clone()]
+                .iter()
+                .enumerate()
+                .filter(|&(_, &m)| self.resting[m as usize].impulse > 0.0)
+                .fold(0u64, |bits, (i, _)| bits | 1 << i);
+            compress_with_signed_biases(
+                &x.inverse_masses,
+                &x.velocities,
+                &x.contacts,
+                Some(guess),
+                &mut x.impulses,
+            )
+        };
+        let (mut largest, mut change) = (0.0f64, 0.0f64);
+        for (i, m) in members.enumerate() {
+            let c = &mut self.resting[x.block_members[m] as usize];
+            let (a, bb) = (c.a as usize, c.b as usize);
+            let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
+            let next = if exact {
+                x.impulses[i].max(0.0)
+            } else {
+                let speed =
+                    (self.segments[bb].velocity - self.segments[a].velocity).dot(c.normal) - c.bias;
+                (c.impulse - speed * c.mass).max(0.0)
+            };
+            let step = next - c.impulse;
+            c.impulse = next;
+            if ima != 0.0 {
+                self.segments[a].velocity -= c.normal * (step * ima);
+            }
+            if imb != 0.0 {
+                self.segments[bb].velocity += c.normal * (step * imb);
+            }
+            largest = largest.max((step * (ima + imb)).abs());
+            let moved = c.impulse - c.before;
+            change += moved * moved;
+        }
+        (largest, change)
+    }
+
     /// Sweeps over the resting contacts (projected Gauss–Seidel, accelerated) until no
     /// impulse changes a relative speed by more than `threshold`, or `sweeps` times.
     pub(super) fn sweep_resting(&mut self, threshold: f64, sweeps: u32) {
@@ -804,6 +1008,7 @@ impl Solver {
         for c in &mut self.resting {
             c.before = c.impulse;
         }
+        let blocks = self.find_blocks();
         let mut last_change = 0.0f64;
         // The acceleration restarted after the last sweep (see below): each contact's
         // direction is its last change, and its start the impulse now, set as the sweep
@@ -818,6 +1023,24 @@ impl Solver {
             // stack reaches its base in one pair of sweeps whichever way the stack is listed.
             for k in 0..count {
                 let k = if sweep % 2 == 0 { k } else { count - 1 - k };
+                if blocks {
+                    let b = self.exact.block_of[k];
+                    if b != NOT_LOCAL {
+                        // At its first contact in the sweep's order.
+                        let first = if sweep % 2 == 0 {
+                            self.exact.block_members[self.exact.block_starts[b as usize] as usize]
+                        } else {
+                            self.exact.block_members
+                                [self.exact.block_starts[b as usize + 1] as usize - 1]
+                        };
+                        if first as usize == k {
+                            let (l, m) = self.sweep_block(b as usize, restarted, threshold);
+                            largest = largest.max(l);
+                            change += m;
+                        }
+                        continue;
+                    }
+                }
                 let c = &mut self.resting[k];
                 if restarted {
                     c.direction = c.impulse - c.before;

@@ -540,7 +540,7 @@ impl Solver {
             } else {
                 FALLBACK_LATER_SWEEPS
             };
-            self.sweep_resting(threshold, sweeps);
+            self.sweep_resting(threshold, sweeps, rest, ctx);
             // Their boxes from now on, for the next round's candidates.
             self.pressed_bodies(bodies, ctx);
             *round += 1;
@@ -575,7 +575,7 @@ impl Solver {
         let (mut finishing, mut stalled) = (0, 0);
         let mut excess = self.fallback_excess(rest, ctx);
         while finishing < FALLBACK_FINISH_SWEEPS && excess > 0.0 && stalled < 4 {
-            self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS);
+            self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS, rest, ctx);
             finishing += FALLBACK_LATER_SWEEPS;
             let left = self.fallback_excess(rest, ctx);
             stalled = if left < excess { 0 } else { stalled + 1 };
@@ -1002,13 +1002,37 @@ impl Solver {
     }
 
     /// Sweeps over the resting contacts (projected Gauss–Seidel, accelerated) until no
-    /// impulse changes a relative speed by more than `threshold`, or `sweeps` times.
-    pub(super) fn sweep_resting(&mut self, threshold: f64, sweeps: u32) {
+    /// impulse changes a relative speed by more than `threshold`, or `sweeps` times; then, if
+    /// a contact would still close deeper than tolerated over the `rest` of the step (see
+    /// [`Solver::excess`]) and some sphere is much lighter than one it rests against (see
+    /// [`Solver::find_blocks`]), as many sweeps again with such spheres' contacts solved
+    /// together. (Where the plain sweeps do, as in a bed of one density, they cost nothing
+    /// more: with blocks in every sweep, a pit of 400 with densities from 1 to 100 took 1.5 to
+    /// 2 times as long, for overlaps 0.5 to 0.6 mm instead of 0.5 to 0.9.)
+    pub(super) fn sweep_resting(
+        &mut self,
+        threshold: f64,
+        sweeps: u32,
+        rest: f64,
+        ctx: &StepContext<'_>,
+    ) {
+        self.sweep_resting_once(threshold, sweeps, false);
+        if self
+            .resting
+            .iter()
+            .any(|c| self.excess(c, rest, DEEP, ctx) > 0.0)
+            && self.find_blocks()
+        {
+            self.sweep_resting_once(threshold, sweeps, true);
+        }
+    }
+
+    /// [`Solver::sweep_resting`]'s sweeps, with `blocks` (found) or without.
+    fn sweep_resting_once(&mut self, threshold: f64, sweeps: u32, blocks: bool) {
         let count = self.resting.len();
         for c in &mut self.resting {
             c.before = c.impulse;
         }
-        let blocks = self.find_blocks();
         let mut last_change = 0.0f64;
         // The acceleration restarted after the last sweep (see below): each contact's
         // direction is its last change, and its start the impulse now, set as the sweep
@@ -1128,7 +1152,7 @@ impl Solver {
             self.solve_pushes(threshold, ctx);
         } else {
             self.warm_start(ctx);
-            self.sweep_resting(threshold, RESTING_SWEEPS);
+            self.sweep_resting(threshold, RESTING_SWEEPS, ctx.dt, ctx);
             self.solve_deep_groups_exactly(ctx.dt, true, ctx);
             if pushing && self.pushed_too_fast(ctx) {
                 self.solve_pushes(threshold, ctx);
@@ -1225,7 +1249,7 @@ impl Solver {
             self.segments[k as usize].velocity = before;
         }
         self.warm_start(ctx);
-        self.sweep_resting(threshold, RESTING_SWEEPS);
+        self.sweep_resting(threshold, RESTING_SWEEPS, ctx.dt, ctx);
         self.push_on(threshold, None, ctx);
     }
 
@@ -1302,7 +1326,7 @@ impl Solver {
                     c.bias = push * scale;
                 }
             }
-            self.sweep_resting(threshold, RESTING_SWEEPS);
+            self.sweep_resting(threshold, RESTING_SWEEPS, finish.unwrap_or(ctx.dt), ctx);
             if let Some(rest) = finish {
                 self.finish_sweeps(threshold, rest, ctx);
             }

@@ -1005,10 +1005,10 @@ impl Solver {
     /// impulse changes a relative speed by more than `threshold`, or `sweeps` times; then, if
     /// a contact would still close deeper than tolerated over the `rest` of the step (see
     /// [`Solver::excess`]) and some sphere is much lighter than one it rests against (see
-    /// [`Solver::find_blocks`]), as many sweeps again with such spheres' contacts solved
-    /// together. (Where the plain sweeps do, as in a bed of one density, they cost nothing
-    /// more: with blocks in every sweep, a pit of 400 with densities from 1 to 100 took 1.5 to
-    /// 2 times as long, for overlaps 0.5 to 0.6 mm instead of 0.5 to 0.9.)
+    /// [`Solver::find_blocks`]), up to [`BLOCK_SWEEPS`] sweeps more with such spheres'
+    /// contacts solved together. (Where the plain sweeps hold, as in a bed of one density,
+    /// they cost nothing more: with blocks in every sweep, a pit of 400 with densities from 1
+    /// to 100 took 1.5 to 2 times as long, for overlaps 0.5 to 0.6 mm instead of 0.5 to 0.9.)
     pub(super) fn sweep_resting(
         &mut self,
         threshold: f64,
@@ -1023,7 +1023,7 @@ impl Solver {
             .any(|c| self.excess(c, rest, DEEP, ctx) > 0.0)
             && self.find_blocks()
         {
-            self.sweep_resting_once(threshold, sweeps, true);
+            self.sweep_resting_once(threshold, sweeps.min(BLOCK_SWEEPS), true);
         }
     }
 

@@ -809,11 +809,7 @@ impl Solver {
                 || (solver.string_of(c.a as usize).is_none()
                     && solver.string_of(c.b as usize).is_none())
         };
-        let light = |solver: &Self, c: &RestingContact| {
-            ((c.inverse_mass_b != 0.0 && c.inverse_mass_a > BLOCK_RATIO * c.inverse_mass_b)
-                || (c.inverse_mass_a != 0.0 && c.inverse_mass_b > BLOCK_RATIO * c.inverse_mass_a))
-                && free(solver, c)
-        };
+        let light = |solver: &Self, c: &RestingContact| much_lighter(c) && free(solver, c);
         let mut x = std::mem::take(&mut self.exact);
         x.block_of.clear();
         x.block_starts.clear();
@@ -895,6 +891,7 @@ impl Solver {
     /// velocities without their impulses; point by point if the exact solve finds no answer.
     /// Returns the largest change of a relative speed and the impulses' squared change since
     /// `before`, as a sweep counts them.
+    #[inline(never)]
     fn sweep_block(&mut self, b: usize, restarted: bool, threshold: f64) -> (f64, f64) {
         let x = &mut self.exact;
         let members = x.block_starts[b] as usize..x.block_starts[b + 1] as usize;
@@ -1016,19 +1013,24 @@ impl Solver {
         rest: f64,
         ctx: &StepContext<'_>,
     ) {
-        self.sweep_resting_once(threshold, sweeps, false);
-        if self
-            .resting
-            .iter()
-            .any(|c| self.excess(c, rest, DEEP, ctx) > 0.0)
+        self.sweep_resting_once::<false>(threshold, sweeps);
+        // (The masses first: a bed of one density has no block, and is not asked for its
+        // excess.)
+        if self.resting.iter().any(much_lighter)
+            && self
+                .resting
+                .iter()
+                .any(|c| self.excess(c, rest, DEEP, ctx) > 0.0)
             && self.find_blocks()
         {
-            self.sweep_resting_once(threshold, sweeps.min(BLOCK_SWEEPS), true);
+            self.sweep_resting_once::<true>(threshold, sweeps.min(BLOCK_SWEEPS));
         }
     }
 
-    /// [`Solver::sweep_resting`]'s sweeps, with `blocks` (found) or without.
-    fn sweep_resting_once(&mut self, threshold: f64, sweeps: u32, blocks: bool) {
+    /// [`Solver::sweep_resting`]'s sweeps, with `BLOCKS` (found) or without (a loop of its
+    /// own, as fast as before blocks: with a test per contact the pit of 1000 at rest took 4%
+    /// longer).
+    fn sweep_resting_once<const BLOCKS: bool>(&mut self, threshold: f64, sweeps: u32) {
         let count = self.resting.len();
         for c in &mut self.resting {
             c.before = c.impulse;
@@ -1047,7 +1049,7 @@ impl Solver {
             // stack reaches its base in one pair of sweeps whichever way the stack is listed.
             for k in 0..count {
                 let k = if sweep % 2 == 0 { k } else { count - 1 - k };
-                if blocks {
+                if BLOCKS {
                     let b = self.exact.block_of[k];
                     if b != NOT_LOCAL {
                         // At its first contact in the sweep's order.
@@ -1527,6 +1529,13 @@ impl Solver {
 
 /// Applies each of `contacts`' `impulses` (those above 0) to `velocities`, as the group's
 /// solves do: `a` pushed back along the normal, `b` forward, each by its inverse mass.
+/// Whether one body of contact `c` is dynamic and more than [`BLOCK_RATIO`] times heavier than
+/// the other (see `Solver::find_blocks`).
+fn much_lighter(c: &RestingContact) -> bool {
+    (c.inverse_mass_b != 0.0 && c.inverse_mass_a > BLOCK_RATIO * c.inverse_mass_b)
+        || (c.inverse_mass_a != 0.0 && c.inverse_mass_b > BLOCK_RATIO * c.inverse_mass_a)
+}
+
 fn apply_impulses(
     contacts: &[GroupContact],
     impulses: &[f64],

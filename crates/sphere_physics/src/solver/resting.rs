@@ -670,41 +670,13 @@ impl Solver {
     /// contacts `e.version_a` of `group`), in scratch of its own (the resting solve's pushes
     /// keep their bodies' places in `local_index` meanwhile).
     fn solve_resting_group_exactly(&mut self, group: &[Event], pushes: bool) {
+        self.exact.gather(
+            &self.resting,
+            &self.segments,
+            group.iter().map(|e| e.version_a as usize),
+            |c| if pushes { c.bias } else { c.bias.min(0.0) },
+        );
         let x = &mut self.exact;
-        if x.index.len() < self.segments.len() {
-            x.index.resize(self.segments.len(), NOT_LOCAL);
-        }
-        x.bodies.clear();
-        x.inverse_masses.clear();
-        x.velocities.clear();
-        x.contacts.clear();
-        for e in group {
-            let c = self.resting[e.version_a as usize];
-            for (k, inverse_mass) in [(c.a, c.inverse_mass_a), (c.b, c.inverse_mass_b)] {
-                let slot = &mut x.index[k as usize];
-                if *slot == NOT_LOCAL {
-                    *slot = x.bodies.len() as u32;
-                    x.bodies.push(k);
-                    x.inverse_masses.push(inverse_mass);
-                    // Before the sweeps' impulses (taken off below).
-                    x.velocities.push(self.segments[k as usize].velocity);
-                }
-            }
-            let (a, b) = (
-                x.index[c.a as usize] as usize,
-                x.index[c.b as usize] as usize,
-            );
-            x.velocities[a] += c.normal * (c.impulse * c.inverse_mass_a);
-            x.velocities[b] -= c.normal * (c.impulse * c.inverse_mass_b);
-            x.contacts.push(GroupContact {
-                a,
-                b,
-                normal: c.normal,
-                restitution: 0.0,
-                bias: if pushes { c.bias } else { c.bias.min(0.0) },
-                string: false,
-            });
-        }
         if compress_with_signed_biases(
             &x.inverse_masses,
             &x.velocities,
@@ -726,9 +698,6 @@ impl Solver {
                     self.segments[k as usize].velocity = x.velocities[i];
                 }
             }
-        }
-        for &k in &x.bodies {
-            x.index[k as usize] = NOT_LOCAL;
         }
     }
 
@@ -893,48 +862,15 @@ impl Solver {
     /// `before`, as a sweep counts them.
     #[inline(never)]
     fn sweep_block(&mut self, b: usize, restarted: bool, threshold: f64) -> (f64, f64) {
-        let x = &mut self.exact;
-        let members = x.block_starts[b] as usize..x.block_starts[b + 1] as usize;
-        x.bodies.clear();
-        x.inverse_masses.clear();
-        x.velocities.clear();
-        x.contacts.clear();
-        if x.index.len() < self.segments.len() {
-            x.index.resize(self.segments.len(), NOT_LOCAL);
-        }
-        for m in members.clone() {
-            let c = &mut self.resting[x.block_members[m] as usize];
-            if restarted {
+        let members = self.exact.block_starts[b] as usize..self.exact.block_starts[b + 1] as usize;
+        if restarted {
+            for &m in &self.exact.block_members[members.clone()] {
+                let c = &mut self.resting[m as usize];
                 c.direction = c.impulse - c.before;
                 c.before = c.impulse;
             }
-            for (k, inverse_mass) in [(c.a, c.inverse_mass_a), (c.b, c.inverse_mass_b)] {
-                let slot = &mut x.index[k as usize];
-                if *slot == NOT_LOCAL {
-                    *slot = x.bodies.len() as u32;
-                    x.bodies.push(k);
-                    x.inverse_masses.push(inverse_mass);
-                    x.velocities.push(self.segments[k as usize].velocity);
-                }
-            }
-            let (a, bb) = (
-                x.index[c.a as usize] as usize,
-                x.index[c.b as usize] as usize,
-            );
-            x.velocities[a] += c.normal * (c.impulse * c.inverse_mass_a);
-            x.velocities[bb] -= c.normal * (c.impulse * c.inverse_mass_b);
-            x.contacts.push(GroupContact {
-                a,
-                b: bb,
-                normal: c.normal,
-                restitution: 0.0,
-                bias: c.bias,
-                string: false,
-            });
         }
-        for &k in &x.bodies {
-            x.index[k as usize] = NOT_LOCAL;
-        }
+        let x = &self.exact;
         // Nothing to do where no contact of the block would move by more than `threshold`
         // on its own (a bed at rest, after its first sweeps).
         let settled = members.clone().all(|m| {
@@ -955,6 +891,16 @@ impl Solver {
                 .sum();
             return (0.0, change);
         }
+        // (The block's list out of the scratch while the scratch is filled.)
+        let listed = std::mem::take(&mut self.exact.block_members);
+        self.exact.gather(
+            &self.resting,
+            &self.segments,
+            listed[members.clone()].iter().map(|&m| m as usize),
+            |c| c.bias,
+        );
+        self.exact.block_members = listed;
+        let x = &mut self.exact;
         // Pivoting from the contacts pushing now (a block's set changes little from sweep to
         // sweep).
         let exact = members.len() <= MAX_EXACT_CONTACTS && {
@@ -1529,6 +1475,56 @@ impl Solver {
 
 /// Applies each of `contacts`' `impulses` (those above 0) to `velocities`, as the group's
 /// solves do: `a` pushed back along the normal, `b` forward, each by its inverse mass.
+impl ExactScratch {
+    /// Fills the scratch for an exact solve of the resting contacts `members` of `resting`:
+    /// each of their bodies once, with its velocity in `segments` less those contacts'
+    /// impulses, and each contact with its bias from `bias` (restitution 0).
+    fn gather(
+        &mut self,
+        resting: &[RestingContact],
+        segments: &[Segment],
+        members: impl Iterator<Item = usize>,
+        bias: impl Fn(&RestingContact) -> f64,
+    ) {
+        if self.index.len() < segments.len() {
+            self.index.resize(segments.len(), NOT_LOCAL);
+        }
+        self.bodies.clear();
+        self.inverse_masses.clear();
+        self.velocities.clear();
+        self.contacts.clear();
+        for n in members {
+            let c = &resting[n];
+            for (k, inverse_mass) in [(c.a, c.inverse_mass_a), (c.b, c.inverse_mass_b)] {
+                let slot = &mut self.index[k as usize];
+                if *slot == NOT_LOCAL {
+                    *slot = self.bodies.len() as u32;
+                    self.bodies.push(k);
+                    self.inverse_masses.push(inverse_mass);
+                    self.velocities.push(segments[k as usize].velocity);
+                }
+            }
+            let (a, b) = (
+                self.index[c.a as usize] as usize,
+                self.index[c.b as usize] as usize,
+            );
+            self.velocities[a] += c.normal * (c.impulse * c.inverse_mass_a);
+            self.velocities[b] -= c.normal * (c.impulse * c.inverse_mass_b);
+            self.contacts.push(GroupContact {
+                a,
+                b,
+                normal: c.normal,
+                restitution: 0.0,
+                bias: bias(c),
+                string: false,
+            });
+        }
+        for &k in &self.bodies {
+            self.index[k as usize] = NOT_LOCAL;
+        }
+    }
+}
+
 /// Whether one body of contact `c` is dynamic and more than [`BLOCK_RATIO`] times heavier than
 /// the other (see `Solver::find_blocks`).
 fn much_lighter(c: &RestingContact) -> bool {

@@ -440,7 +440,7 @@ struct ExactScratch {
     velocities: Vec<DVec3>,
     contacts: Vec<GroupContact>,
     impulses: Vec<f64>,
-    /// The resting sweeps' blocks (see `Solver::order_blocks`): each resting contact's block
+    /// The resting sweeps' blocks (see `Solver::find_blocks`): each resting contact's block
     /// (`NOT_LOCAL` for one swept alone), each block's contacts (`block_members`, from
     /// `block_starts[b]` to `block_starts[b + 1]`), and each body's block while they are found.
     block_of: Vec<u32>,

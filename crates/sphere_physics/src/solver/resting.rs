@@ -768,8 +768,8 @@ impl Solver {
     }
 
     /// Finds the resting sweeps' blocks: a body much lighter than a dynamic one it rests
-    /// against ([`BLOCK_RATIO`]) has its contacts solved together, exactly, in each sweep
-    /// (those not owned by a lighter such body). Returns whether there are any.
+    /// against ([`BLOCK_RATIO`]) has its contacts solved together, exactly, in each block
+    /// sweep (those not owned by a lighter such body). Returns whether there are any.
     fn find_blocks(&mut self) -> bool {
         // A strung sphere's contacts stay in the plain sweeps: its string bends its velocity
         // after the solve, which holds no string.
@@ -802,15 +802,15 @@ impl Solver {
         }
         let mut blocks = 0u32;
         for c in &self.resting {
-            let (oa, ob) = (
-                x.owner_block[c.a as usize] != NOT_LOCAL,
-                x.owner_block[c.b as usize] != NOT_LOCAL,
-            );
+            let (oa, ob) = if free(self, c) {
+                (
+                    x.owner_block[c.a as usize] != NOT_LOCAL,
+                    x.owner_block[c.b as usize] != NOT_LOCAL,
+                )
+            } else {
+                (false, false)
+            };
             let owner = match (oa, ob) {
-                _ if !free(self, c) => {
-                    x.block_of.push(NOT_LOCAL);
-                    continue;
-                }
                 (false, false) => {
                     x.block_of.push(NOT_LOCAL);
                     continue;

@@ -1,4 +1,4 @@
-//! Regression (README, "A known limit: piles of very different densities"): in a pit of
+//! Regression (README, "Piles of very different densities"): in a pit of
 //! spheres whose densities span four orders of magnitude, heavy spheres sank through light
 //! ones, all the way (a pit of 50 ended with two spheres 99.9 mm into each other, their
 //! diameter 100 mm). The resting solve's Gauss–Seidel sweeps carry a load through a light
@@ -7,9 +7,9 @@
 //! each sweep, and the heavy one settled into it.
 //!
 //! Fixed by: when the plain sweeps leave a contact closing deeper than tolerated, up to 32
-//! sweeps more run with the contacts of each sphere more than ten times lighter than a dynamic sphere
-//! it rests against solved together, exactly (block Gauss–Seidel), so that the load passes
-//! through it in one sweep.
+//! sweeps more run with the contacts of each sphere more than ten times lighter than a dynamic
+//! sphere it rests against solved together, exactly (block Gauss–Seidel), so that the load
+//! passes through it in one sweep.
 
 mod common;
 

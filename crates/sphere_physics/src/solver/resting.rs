@@ -922,6 +922,8 @@ impl Solver {
             let c = &mut self.resting[x.block_members[m] as usize];
             let (a, bb) = (c.a as usize, c.b as usize);
             let (ima, imb) = (c.inverse_mass_a, c.inverse_mass_b);
+            // (The sweep's own update, written out again: shared through a helper, the pit of
+            // 1000 at rest took 1% to 2% longer, five alternating runs of five.)
             let next = if exact {
                 x.impulses[i].max(0.0)
             } else {

@@ -25,6 +25,9 @@ pub struct Measurement {
     pub kinetic_before: f64,
     /// Kinetic energy after the last.
     pub kinetic_after: f64,
+    /// Kinetic energy after each timed step, averaged (read outside the timing): for a bed
+    /// that should lie still, how much it jiggles.
+    pub kinetic_mean: f64,
     /// Collisions resolved (0 when the engine does not count them).
     pub collisions: u64,
     /// Pairs handed to the time-of-impact method (our engine only; 0 for rapier).
@@ -115,11 +118,13 @@ pub fn measure_ours(
     let mut seconds = 0.0;
     let mut phases = profile.then(StepProfile::default);
     let mut per_step = Vec::with_capacity(steps as usize);
+    let mut kinetic_sum = 0.0;
     for _ in 0..steps {
         let started = Instant::now();
         let stats = *world.step(dt).expect("dt is valid");
         let elapsed = started.elapsed().as_secs_f64();
         seconds += elapsed;
+        kinetic_sum += world.kinetic_energy();
         collisions += u64::from(stats.collisions);
         deferred += u64::from(stats.collisions_deferred);
         toi_tests += stats.toi_tests;
@@ -142,6 +147,7 @@ pub fn measure_ours(
         seconds,
         kinetic_before,
         kinetic_after: world.kinetic_energy(),
+        kinetic_mean: kinetic_sum / f64::from(steps.max(1)),
         collisions,
         toi_tests,
         max_overlap: Some(world.max_overlap()),
@@ -197,11 +203,12 @@ pub fn measure_rapier(
     for _ in 0..settle.max(1) {
         world.step();
     }
-    let mut seconds = 0.0;
+    let (mut seconds, mut kinetic_sum) = (0.0, 0.0);
     for _ in 0..steps {
         let started = Instant::now();
         world.step();
         seconds += started.elapsed().as_secs_f64();
+        kinetic_sum += world.kinetic_energy();
     }
     Measurement {
         bodies: world.len(),
@@ -209,6 +216,7 @@ pub fn measure_rapier(
         seconds,
         kinetic_before,
         kinetic_after: world.kinetic_energy(),
+        kinetic_mean: kinetic_sum / f64::from(steps.max(1)),
         collisions: 0,
         toi_tests: 0,
         max_overlap: Some(overlap_left(scene, descs, &world.positions())),

@@ -1,6 +1,7 @@
 //! The benchmark scenes are what their docs say: the counts, the walls, the spheres inside
 //! them, and the pile as deep at every size (so that its cost per sphere compares across sizes);
-//! and a measured run's steps, one by one, add up to its totals.
+//! and a measured run's steps, one by one, add up to its totals, its mean kinetic energy over
+//! them.
 
 use sphere_bench::scenes::{self, RADIUS};
 
@@ -82,4 +83,25 @@ fn a_measured_run_lists_each_timed_step_and_they_add_up() {
     // Without profiling there is no event loop's time to give.
     let plain = sphere_bench::measure_ours(&scenes::gas(100, 1), 1, 3, 1.0 / 60.0, false);
     assert!(plain.per_step.iter().all(|r| r.events.is_none()));
+}
+
+#[test]
+fn the_mean_kinetic_energy_is_over_the_timed_steps() {
+    // A shower falling from rest: its energy grows every step, so a mean over the wrong steps
+    // (the untimed ones too, or only the last) comes out different.
+    let (scene, dt) = (scenes::shower(200, 1), 1.0 / 60.0);
+    let m = sphere_bench::measure_ours(&scene, 3, 10, dt, false);
+    let mut world = scene.build().unwrap();
+    for _ in 0..3 {
+        world.step(dt).unwrap();
+    }
+    let mut energies = Vec::new();
+    for _ in 0..10 {
+        world.step(dt).unwrap();
+        energies.push(world.kinetic_energy());
+    }
+    let mean = energies.iter().sum::<f64>() / 10.0;
+    assert_eq!(m.kinetic_mean, mean);
+    assert_eq!(m.kinetic_after, energies[9]);
+    assert!(energies[0] < mean && mean < energies[9]);
 }

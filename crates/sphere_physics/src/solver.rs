@@ -355,6 +355,8 @@ pub(crate) struct Solver {
     group: Vec<Event>,
     ranges: Vec<std::ops::Range<usize>>,
     components: Components,
+    /// Scratch for [`Solver::solve_small_groups_exactly`].
+    small_groups: SmallGroups,
     touched: Vec<u32>,
     local_resting: Vec<bool>,
     local_taut: Vec<bool>,
@@ -451,6 +453,18 @@ struct ExactScratch {
 
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
 const NOT_LOCAL: u32 = u32::MAX;
+
+/// Scratch for [`Solver::solve_small_groups_exactly`]: a union–find over the bodies of the
+/// resting contacts (by solver index), each root's count of contacts, and whether any of them
+/// closes or pushes; then the small groups' contacts, as events sorted by group.
+#[derive(Debug, Default)]
+struct SmallGroups {
+    parent: Vec<u32>,
+    count: Vec<u32>,
+    closing: Vec<bool>,
+    pushing: Vec<bool>,
+    events: Vec<Event>,
+}
 
 /// Scratch for [`sort_into_components`], kept so that grouping allocates nothing.
 #[derive(Debug, Default)]

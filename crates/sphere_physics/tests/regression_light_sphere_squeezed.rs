@@ -14,6 +14,12 @@
 //!   deep). A body past its share is now solved at once with every contact touching it,
 //!   restitution 0, as the bounces would end in the limit (a few times a step at most, then
 //!   deferred as before).
+//! - **Pressed, lightly** (found 2026-12-04, thirty-seventh session). A ball of 0.1 to 0.3 kg
+//!   on a pebble of 3 g (33 to 100 times its mass), or of up to 3 kg on a column of two to five
+//!   pebbles, was left by the sweeps closing on them a little too slowly to call for that
+//!   exact solve, and sank into them step after step, 0.3 to 1.0 mm (up to a hundredth of its
+//!   radius). A group of up to eight contacts that the sweeps leave closing at all, none of
+//!   them pushing against an overlap, is now solved exactly.
 
 mod common;
 
@@ -77,6 +83,41 @@ fn regression_a_heavy_ball_on_a_pebble_does_not_sink_through_it() {
             .unwrap();
         let (deepest, _) = run(&mut world, 120);
         assert!(deepest <= 1e-6, "under {heavy} kg: {deepest}");
+    }
+}
+
+/// A ball of 0.03 to 3 kg on a column of one to five pebbles of 3 g on a floor: it stays on
+/// them (before: up to 0.93 to 1.0 mm into a pebble for each column, a hundredth of the
+/// radius; at most 1.7e-8 m now).
+#[test]
+fn regression_a_ball_a_few_dozen_times_a_pebble_does_not_settle_into_it() {
+    for pebbles in 1..=5 {
+        for heavy in [0.03, 0.1, 0.2, 0.3, 0.5, 1.0, 3.0] {
+            let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+            world
+                .add_sphere(
+                    SphereDesc::new(100.0)
+                        .at(DVec3::new(0.0, -100.0, 0.0))
+                        .fixed(),
+                )
+                .unwrap();
+            for i in 0..pebbles {
+                let y = RADIUS * f64::from(1 + 2 * i);
+                world
+                    .add_sphere(ball(DVec3::new(0.0, y, 0.0), 0.003, 0.5))
+                    .unwrap();
+            }
+            let top = RADIUS * f64::from(1 + 2 * pebbles);
+            world
+                .add_sphere(ball(DVec3::new(0.0, top, 0.0), heavy, 0.5))
+                .unwrap();
+            let (deepest, deferred) = run(&mut world, 120);
+            assert_eq!(deferred, 0);
+            assert!(
+                deepest <= 1e-6,
+                "{heavy} kg on {pebbles} pebble(s): {deepest} m deep"
+            );
+        }
     }
 }
 

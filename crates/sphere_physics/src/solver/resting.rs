@@ -12,6 +12,11 @@ use crate::response::{MAX_EXACT_CONTACTS, compress_with_signed_biases};
 /// `Solver::excess`).
 const DEEP: f64 = 0.01;
 
+/// A group of at most this many resting contacts (connected through dynamic bodies) that the
+/// sweeps leave closing is solved exactly, however shallow (see
+/// [`Solver::solve_small_groups_exactly`]).
+const SMALL_GROUP: usize = 8;
+
 impl Solver {
     /// Whether [`Solver::resting_contact`] may act on `(i, j)`: resting contacts are sought,
     /// and the pair touches (or both are fixed), or is near (see [`Solver::near`]) with a body
@@ -666,6 +671,100 @@ impl Solver {
         solved
     }
 
+    /// After the sweeps and [`Solver::solve_deep_groups_exactly`]: each connected group of 2
+    /// to [`SMALL_GROUP`] resting contacts that the sweeps leave closing by more than half a
+    /// contact's band over the step, and in which no contact pushes against an overlap, is
+    /// solved exactly (from the velocities before the sweeps' impulses). Gauss–Seidel carries
+    /// a load through a light sphere by a share of the order of the masses' ratio a sweep: a
+    /// ball of 0.1 to 0.3 kg on a pebble of 3 g (and on a column of up to five) sank a
+    /// hundredth of its radius into it, just short of what calls for the solve of
+    /// [`Solver::solve_deep_groups_exactly`], and stayed there. Small groups only: a bed's
+    /// sweeps stay as they are. Groups whose contacts push are left to the sweeps: solved whole,
+    /// pushes on nearly opposite sides of a sphere send it off many times faster than either.
+    /// The groups are found by a union–find over the bodies, without sorting every contact (a
+    /// sort of the pile of 1000's 3700 contacts each step cost it 7%).
+    pub(super) fn solve_small_groups_exactly(&mut self, rest: f64, ctx: &StepContext<'_>) {
+        let mut g = std::mem::take(&mut self.small_groups);
+        let n = self.segments.len();
+        if g.parent.len() < n {
+            g.parent.resize(n, 0);
+            g.count.resize(n, 0);
+            g.closing.resize(n, false);
+            g.pushing.resize(n, false);
+        }
+        fn root(parent: &mut [u32], mut i: u32) -> u32 {
+            while parent[i as usize] != i {
+                let up = parent[parent[i as usize] as usize];
+                parent[i as usize] = up;
+                i = up;
+            }
+            i
+        }
+        let dynamic = |k: u32| !self.segments[k as usize].is_fixed();
+        for c in &self.resting {
+            for k in [c.a, c.b] {
+                g.parent[k as usize] = k;
+                g.count[k as usize] = 0;
+                g.closing[k as usize] = false;
+                g.pushing[k as usize] = false;
+            }
+        }
+        for c in &self.resting {
+            if dynamic(c.a) && dynamic(c.b) {
+                let (x, y) = (root(&mut g.parent, c.a), root(&mut g.parent, c.b));
+                g.parent[x.max(y) as usize] = x.min(y);
+            }
+        }
+        // Each group's root: its lowest dynamic body's (a contact's dynamic end).
+        let group_of = |parent: &mut [u32], c: &RestingContact| {
+            root(parent, if dynamic(c.a) { c.a } else { c.b })
+        };
+        let mut any = false;
+        for c in &self.resting {
+            let r = group_of(&mut g.parent, c) as usize;
+            g.count[r] += 1;
+            g.pushing[r] |= c.bias > 0.0;
+            let closing = self.excess(c, rest, 0.0, ctx) > 0.0;
+            g.closing[r] |= closing;
+            any |= closing;
+        }
+        if !any {
+            self.small_groups = g;
+            return;
+        }
+        g.events.clear();
+        for (i, c) in self.resting.iter().enumerate() {
+            let r = group_of(&mut g.parent, c);
+            let count = g.count[r as usize] as usize;
+            if (2..=SMALL_GROUP).contains(&count) && g.closing[r as usize] && !g.pushing[r as usize]
+            {
+                // The contact in `version_a` (as `solve_resting_group_exactly` takes it), its
+                // group's root in `version_b`, to sort by.
+                g.events.push(Event {
+                    time: 0.0,
+                    a: c.a,
+                    b: c.b,
+                    version_a: i as u32,
+                    version_b: r,
+                });
+            }
+        }
+        g.events
+            .sort_unstable_by_key(|e| (e.version_b, e.version_a));
+        let mut start = 0;
+        while start < g.events.len() {
+            let group = g.events[start].version_b;
+            let end = start
+                + g.events[start..]
+                    .iter()
+                    .take_while(|e| e.version_b == group)
+                    .count();
+            self.solve_resting_group_exactly(&g.events[start..end], true);
+            start = end;
+        }
+        self.small_groups = g;
+    }
+
     /// [`Solver::solve_deep_groups_exactly`] for one group (its contacts are the resting
     /// contacts `e.version_a` of `group`), in scratch of its own (the resting solve's pushes
     /// keep their bodies' places in `local_index` meanwhile).
@@ -1104,6 +1203,7 @@ impl Solver {
             self.warm_start(ctx);
             self.sweep_resting(threshold, RESTING_SWEEPS, ctx.dt, ctx);
             self.solve_deep_groups_exactly(ctx.dt, true, ctx);
+            self.solve_small_groups_exactly(ctx.dt, ctx);
             if pushing && self.pushed_too_fast(ctx) {
                 self.solve_pushes(threshold, ctx);
             }

@@ -679,10 +679,12 @@ impl Solver {
     /// ball of 0.1 to 0.3 kg on a pebble of 3 g (and on a column of up to five) sank a
     /// hundredth of its radius into it, just short of what calls for the solve of
     /// [`Solver::solve_deep_groups_exactly`], and stayed there. Small groups only: a bed's
-    /// sweeps stay as they are. Groups whose contacts push are left to the sweeps: solved whole,
-    /// pushes on nearly opposite sides of a sphere send it off many times faster than either.
-    /// The groups are found by a union–find over the bodies, without sorting every contact (a
-    /// sort of the pile of 1000's 3700 contacts each step cost it 7%).
+    /// sweeps stay as they are. Groups whose contacts push are left to that trigger (solved
+    /// with their pushes at this one, a pit of 50 with densities from 1 to 10 000 sank 98.6 mm
+    /// into itself), and so is the fallback (where this trigger sent a ball sliding into a gap
+    /// it overlaps up at 0.48 m/s). The groups are found by a union–find over the bodies,
+    /// without sorting every contact (a sort of the pile of 1000's 3700 contacts each step cost
+    /// it 7%).
     pub(super) fn solve_small_groups_exactly(&mut self, rest: f64, ctx: &StepContext<'_>) {
         let mut g = std::mem::take(&mut self.small_groups);
         let n = self.segments.len();

@@ -62,25 +62,36 @@ fn run(world: &mut World, steps: u32) -> (f64, u32) {
     (deepest, deferred)
 }
 
+/// A column of `pebbles` pebbles of 3 g on a floor under gravity, touching, and a ball of
+/// `heavy` kg on top, restitution 0.5.
+fn pebble_column(pebbles: u32, heavy: f64) -> World {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world
+        .add_sphere(
+            SphereDesc::new(100.0)
+                .at(DVec3::new(0.0, -100.0, 0.0))
+                .fixed(),
+        )
+        .unwrap();
+    for i in 0..pebbles {
+        let y = RADIUS * f64::from(1 + 2 * i);
+        world
+            .add_sphere(ball(DVec3::new(0.0, y, 0.0), 0.003, 0.5))
+            .unwrap();
+    }
+    let top = RADIUS * f64::from(1 + 2 * pebbles);
+    world
+        .add_sphere(ball(DVec3::new(0.0, top, 0.0), heavy, 0.5))
+        .unwrap();
+    world
+}
+
 /// A pebble of 3 g on a floor under a ball of 100 kg (and of 10 t): it holds the ball up
 /// (before: the ball sank 0.2 m, through it, and 7.6 mm on a pebble under 1 kg).
 #[test]
 fn regression_a_heavy_ball_on_a_pebble_does_not_sink_through_it() {
     for heavy in [1.0, 100.0, 1e4] {
-        let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-        world
-            .add_sphere(
-                SphereDesc::new(100.0)
-                    .at(DVec3::new(0.0, -100.0, 0.0))
-                    .fixed(),
-            )
-            .unwrap();
-        world
-            .add_sphere(ball(DVec3::new(0.0, RADIUS, 0.0), 0.003, 0.5))
-            .unwrap();
-        world
-            .add_sphere(ball(DVec3::new(0.0, 3.0 * RADIUS, 0.0), heavy, 0.5))
-            .unwrap();
+        let mut world = pebble_column(1, heavy);
         let (deepest, _) = run(&mut world, 120);
         assert!(deepest <= 1e-6, "under {heavy} kg: {deepest}");
     }
@@ -93,24 +104,7 @@ fn regression_a_heavy_ball_on_a_pebble_does_not_sink_through_it() {
 fn regression_a_ball_a_few_dozen_times_a_pebble_does_not_settle_into_it() {
     for pebbles in 1..=5 {
         for heavy in [0.03, 0.1, 0.2, 0.3, 0.5, 1.0, 3.0] {
-            let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-            world
-                .add_sphere(
-                    SphereDesc::new(100.0)
-                        .at(DVec3::new(0.0, -100.0, 0.0))
-                        .fixed(),
-                )
-                .unwrap();
-            for i in 0..pebbles {
-                let y = RADIUS * f64::from(1 + 2 * i);
-                world
-                    .add_sphere(ball(DVec3::new(0.0, y, 0.0), 0.003, 0.5))
-                    .unwrap();
-            }
-            let top = RADIUS * f64::from(1 + 2 * pebbles);
-            world
-                .add_sphere(ball(DVec3::new(0.0, top, 0.0), heavy, 0.5))
-                .unwrap();
+            let mut world = pebble_column(pebbles, heavy);
             let (deepest, deferred) = run(&mut world, 120);
             assert_eq!(deferred, 0);
             assert!(

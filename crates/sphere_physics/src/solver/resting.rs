@@ -717,7 +717,7 @@ impl Solver {
                 g.parent[x.max(y) as usize] = x.min(y);
             }
         }
-        // Each group's root: its lowest dynamic body's (a contact's dynamic end).
+        // A contact's group: the root of its dynamic end (the group's lowest index).
         let group_of = |parent: &mut [u32], c: &RestingContact| {
             root(parent, if dynamic(c.a) { c.a } else { c.b })
         };

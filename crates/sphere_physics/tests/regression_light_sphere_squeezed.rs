@@ -115,6 +115,44 @@ fn regression_a_ball_a_few_dozen_times_a_pebble_does_not_settle_into_it() {
     }
 }
 
+/// 300 upright columns of two to six touching balls on a floor, each ball's mass drawn
+/// log-uniformly from 30 g to 3 kg (neighbours at most a hundred times apart): none settles
+/// into itself by more than 1e-6 m over two seconds (the deepest 5.6e-8 m; before, 189 of
+/// them passed 1e-6 m over the second second, and the deepest reached 1.0 mm, a hundredth of
+/// the radius).
+#[test]
+fn regression_columns_of_mixed_masses_stand() {
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut uniform = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for column in 0..300 {
+        let count = 2 + (uniform() * 5.0) as u32;
+        let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+        world
+            .add_sphere(
+                SphereDesc::new(100.0)
+                    .at(DVec3::new(0.0, -100.0, 0.0))
+                    .fixed(),
+            )
+            .unwrap();
+        for i in 0..count {
+            let mass = 10f64.powf(-1.5 + 2.0 * uniform());
+            let at = DVec3::new(0.0, RADIUS * f64::from(1 + 2 * i), 0.0);
+            world.add_sphere(ball(at, mass, 0.5)).unwrap();
+        }
+        let (deepest, deferred) = run(&mut world, 120);
+        assert_eq!(deferred, 0);
+        assert!(
+            deepest <= 1e-6,
+            "column {column} of {count}: {deepest} m deep"
+        );
+    }
+}
+
 /// Two balls of 100 kg closing at 1 m/s each on a pebble of 3 g between them, no gravity,
 /// restitution 0.9, in a world of three (the budget runs out: the fallback) and in one with
 /// 80 more spheres at rest far off (the pebble's share runs out first). Before: 1.2 cm deep

@@ -62,9 +62,9 @@ fn run(world: &mut World, steps: u32) -> (f64, u32) {
     (deepest, deferred)
 }
 
-/// A column of `pebbles` pebbles of 3 g on a floor under gravity, touching, and a ball of
-/// `heavy` kg on top, restitution 0.5.
-fn pebble_column(pebbles: u32, heavy: f64) -> World {
+/// An upright column of touching balls of these masses (from the bottom) on a floor under
+/// gravity, restitution 0.5.
+fn column(masses: impl IntoIterator<Item = f64>) -> World {
     let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
     world
         .add_sphere(
@@ -73,17 +73,16 @@ fn pebble_column(pebbles: u32, heavy: f64) -> World {
                 .fixed(),
         )
         .unwrap();
-    for i in 0..pebbles {
-        let y = RADIUS * f64::from(1 + 2 * i);
-        world
-            .add_sphere(ball(DVec3::new(0.0, y, 0.0), 0.003, 0.5))
-            .unwrap();
+    for (i, mass) in (0u32..).zip(masses) {
+        let at = DVec3::new(0.0, RADIUS * f64::from(1 + 2 * i), 0.0);
+        world.add_sphere(ball(at, mass, 0.5)).unwrap();
     }
-    let top = RADIUS * f64::from(1 + 2 * pebbles);
     world
-        .add_sphere(ball(DVec3::new(0.0, top, 0.0), heavy, 0.5))
-        .unwrap();
-    world
+}
+
+/// A column of `pebbles` pebbles of 3 g under a ball of `heavy` kg.
+fn pebble_column(pebbles: usize, heavy: f64) -> World {
+    column(std::iter::repeat_n(0.003, pebbles).chain([heavy]))
 }
 
 /// A pebble of 3 g on a floor under a ball of 100 kg (and of 10 t): it holds the ball up
@@ -129,26 +128,17 @@ fn regression_columns_of_mixed_masses_stand() {
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
-    for column in 0..300 {
-        let count = 2 + (uniform() * 5.0) as u32;
-        let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
-        world
-            .add_sphere(
-                SphereDesc::new(100.0)
-                    .at(DVec3::new(0.0, -100.0, 0.0))
-                    .fixed(),
-            )
-            .unwrap();
-        for i in 0..count {
-            let mass = 10f64.powf(-1.5 + 2.0 * uniform());
-            let at = DVec3::new(0.0, RADIUS * f64::from(1 + 2 * i), 0.0);
-            world.add_sphere(ball(at, mass, 0.5)).unwrap();
-        }
+    for n in 0..300 {
+        let count = 2 + (uniform() * 5.0) as usize;
+        let masses: Vec<f64> = (0..count)
+            .map(|_| 10f64.powf(-1.5 + 2.0 * uniform()))
+            .collect();
+        let mut world = column(masses.iter().copied());
         let (deepest, deferred) = run(&mut world, 120);
         assert_eq!(deferred, 0);
         assert!(
             deepest <= 1e-6,
-            "column {column} of {count}: {deepest} m deep"
+            "column {n}, {masses:?} kg: {deepest} m deep"
         );
     }
 }

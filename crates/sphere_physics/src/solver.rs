@@ -466,12 +466,29 @@ struct SmallGroups {
     events: Vec<Event>,
 }
 
+/// The root of `i` in a union–find forest (`parent[r] == r` at a root), halving the path on
+/// the way.
+fn union_root(parent: &mut [u32], mut i: usize) -> usize {
+    while parent[i] as usize != i {
+        parent[i] = parent[parent[i] as usize];
+        i = parent[i] as usize;
+    }
+    i
+}
+
+/// Joins the trees of `i` and `j` in a union–find forest, under the smaller root (so each
+/// root is its tree's smallest index).
+fn union_join(parent: &mut [u32], i: usize, j: usize) {
+    let (x, y) = (union_root(parent, i), union_root(parent, j));
+    parent[x.max(y)] = x.min(y) as u32;
+}
+
 /// Scratch for [`sort_into_components`], kept so that grouping allocates nothing.
 #[derive(Debug, Default)]
 struct Components {
     label: Vec<usize>,
-    /// Union–find over the events: each event's parent.
-    parent: Vec<usize>,
+    /// Union–find over the events: each event's parent (see [`union_root`]).
+    parent: Vec<u32>,
     /// Each event's two bodies, as (body, event), sorted so that events sharing a body meet.
     ends: Vec<(u32, usize)>,
     /// Each component root's smallest event.
@@ -503,14 +520,7 @@ fn sort_into_components(
     // thousands of events at once.
     let parent = &mut scratch.parent;
     parent.clear();
-    parent.extend(0..n);
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    parent.extend(0..n as u32);
     let ends = &mut scratch.ends;
     ends.clear();
     ends.extend(
@@ -523,8 +533,7 @@ fn sort_into_components(
     ends.sort_unstable();
     for pair in ends.windows(2) {
         if pair[0].0 == pair[1].0 {
-            let (x, y) = (root(parent, pair[0].1), root(parent, pair[1].1));
-            parent[x.max(y)] = x.min(y);
+            union_join(parent, pair[0].1, pair[1].1);
         }
     }
     let first = &mut scratch.first;
@@ -533,7 +542,7 @@ fn sort_into_components(
     let label = &mut scratch.label;
     label.clear();
     for i in 0..n {
-        let r = root(parent, i);
+        let r = union_root(parent, i);
         // Events are visited in order: the first to reach a root is its smallest.
         if first[r] == usize::MAX {
             first[r] = i;

@@ -694,14 +694,6 @@ impl Solver {
             g.closing.resize(n, false);
             g.pushing.resize(n, false);
         }
-        fn root(parent: &mut [u32], mut i: u32) -> u32 {
-            while parent[i as usize] != i {
-                let up = parent[parent[i as usize] as usize];
-                parent[i as usize] = up;
-                i = up;
-            }
-            i
-        }
         let dynamic = |k: u32| !self.segments[k as usize].is_fixed();
         for c in &self.resting {
             for k in [c.a, c.b] {
@@ -713,17 +705,16 @@ impl Solver {
         }
         for c in &self.resting {
             if dynamic(c.a) && dynamic(c.b) {
-                let (x, y) = (root(&mut g.parent, c.a), root(&mut g.parent, c.b));
-                g.parent[x.max(y) as usize] = x.min(y);
+                union_join(&mut g.parent, c.a as usize, c.b as usize);
             }
         }
         // A contact's group: the root of its dynamic end (the group's lowest index).
         let group_of = |parent: &mut [u32], c: &RestingContact| {
-            root(parent, if dynamic(c.a) { c.a } else { c.b })
+            union_root(parent, if dynamic(c.a) { c.a } else { c.b } as usize)
         };
         let mut any = false;
         for c in &self.resting {
-            let r = group_of(&mut g.parent, c) as usize;
+            let r = group_of(&mut g.parent, c);
             g.count[r] += 1;
             g.pushing[r] |= c.bias > 0.0;
             let closing = self.excess(c, rest, 0.0, ctx) > 0.0;
@@ -737,9 +728,8 @@ impl Solver {
         g.events.clear();
         for (i, c) in self.resting.iter().enumerate() {
             let r = group_of(&mut g.parent, c);
-            let count = g.count[r as usize] as usize;
-            if (2..=SMALL_GROUP).contains(&count) && g.closing[r as usize] && !g.pushing[r as usize]
-            {
+            let count = g.count[r] as usize;
+            if (2..=SMALL_GROUP).contains(&count) && g.closing[r] && !g.pushing[r] {
                 // The contact in `version_a` (as `solve_resting_group_exactly` takes it), its
                 // group's root in `version_b`, to sort by.
                 g.events.push(Event {
@@ -747,7 +737,7 @@ impl Solver {
                     a: c.a,
                     b: c.b,
                     version_a: i as u32,
-                    version_b: r,
+                    version_b: r as u32,
                 });
             }
         }

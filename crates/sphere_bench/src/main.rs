@@ -2,7 +2,7 @@
 //! several sizes, ours against rapier3d 0.36 (with `--features rapier`), as a markdown table.
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
-//!         [--steps 60] [--settle 1] [--scenes shower,gas,pile] [--repeat 1] [--phases]
+//!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers] [--repeat 1] [--phases]
 //!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step; with
@@ -95,9 +95,11 @@ fn parse() -> Result<Options, String> {
                 if let Some(bad) = options
                     .scenes
                     .iter()
-                    .find(|s| !["shower", "gas", "pile"].contains(&s.as_str()))
+                    .find(|s| !["shower", "gas", "pile", "showers"].contains(&s.as_str()))
                 {
-                    return Err(format!("unknown scene '{bad}' (shower, gas, pile)"));
+                    return Err(format!(
+                        "unknown scene '{bad}' (shower, gas, pile, showers)"
+                    ));
                 }
             }
             "--phases" => options.phases = true,
@@ -113,7 +115,7 @@ fn parse() -> Result<Options, String> {
             "--rapier-flat-walls" => options.rapier_flat_walls = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
                 );
                 std::process::exit(0);
             }
@@ -190,6 +192,7 @@ fn main() {
         for &n in &options.sizes {
             let scene = match scene_name.as_str() {
                 "shower" => scenes::shower(n, 1),
+                "showers" => scenes::showers(n, 1),
                 "pile" => scenes::pile(n, 1),
                 _ => scenes::gas(n, 1),
             };

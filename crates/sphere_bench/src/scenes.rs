@@ -1,4 +1,5 @@
-//! The benchmark scenes, sized by sphere count: a shower onto a fixed dome, and a gas in a box.
+//! The benchmark scenes, sized by sphere count: a shower onto a fixed dome, a gas in a box, a
+//! pile in an open box, and showers side by side (a sparse scene).
 
 use sphere_physics::SceneDesc;
 
@@ -29,6 +30,57 @@ pub fn shower(n: u32, seed: u64) -> SceneDesc {
         top = bottom + side,
     ))
     .expect("the shower scene is valid")
+}
+
+/// How many spheres each of [`showers`]' tiles holds at most: the 1k shower's.
+pub const TILE: u32 = 1000;
+
+/// The gap between neighbouring tiles' domes in [`showers`], in metres: spheres sliding off a
+/// dome fly up to a few metres in a second (with 1 m, 343 of the 32 000 collisions of four
+/// tiles' first second were between tiles; with 3 m one; with 4 m none).
+pub const TILE_GAP: f64 = 4.0;
+
+/// `n` spheres as copies of the 1k [`shower`] side by side, each raining onto its own dome:
+/// `ceil(n / 1000)` tiles (seeds `seed`, `seed + 1`, ...) of as equal counts as add up to `n`,
+/// on a square lattice, their domes [`TILE_GAP`] apart. Every sphere meets what a sphere of the
+/// 1k shower meets, at every `n`, but the spheres are spread thin: 100 tiles at 100k span
+/// 73 m by 73 m, most of it empty (a game's level with groups of spheres here and there), and
+/// the hundred domes are large fixed spheres apart from the rest.
+pub fn showers(n: u32, seed: u64) -> SceneDesc {
+    let tiles = n.div_ceil(TILE).max(1);
+    let across = f64::from(tiles).sqrt().ceil() as u32;
+    let side = side_for(8.0 * f64::from(TILE));
+    let dome = 0.75 * side;
+    let bottom = dome + 0.2;
+    let spacing = 2.0 * dome + TILE_GAP;
+    let (mut domes, mut rain) = (Vec::new(), Vec::new());
+    for t in 0..tiles {
+        let count = n / tiles + u32::from(t < n % tiles);
+        let (x, z) = (
+            f64::from(t % across) * spacing,
+            f64::from(t / across) * spacing,
+        );
+        domes.push(format!(
+            "(name: \"dome {t}\", position: ({x:?}, 0.0, {z:?}), radius: {dome:?}, fixed: true)"
+        ));
+        rain.push(format!(
+            "Shower(count: {count}, seed: {s}, min: ({x0:?}, {bottom:?}, {z0:?}), \
+             max: ({x1:?}, {top:?}, {z1:?}), radius: {RADIUS:?})",
+            s = seed + u64::from(t),
+            x0 = x - side / 2.0,
+            x1 = x + side / 2.0,
+            z0 = z - side / 2.0,
+            z1 = z + side / 2.0,
+            top = bottom + side,
+        ));
+    }
+    SceneDesc::from_ron(&format!(
+        "(name: \"showers {n}\", gravity: (0.0, -9.81, 0.0), restitution: 0.5,
+          spheres: [{}], generate: [{}])",
+        domes.join(", "),
+        rain.join(", ")
+    ))
+    .expect("the showers scene is valid")
 }
 
 /// `n` spheres of radius 0.05 at speed 1 in random directions, a quarter of the lattice filled,

@@ -66,6 +66,47 @@ fn the_pile_starts_inside_its_open_box_and_is_as_deep_at_every_size() {
 }
 
 #[test]
+fn the_showers_are_the_1k_shower_side_by_side_and_stay_apart() {
+    // One tile is the 1k shower itself.
+    let (one, tiles) = (scenes::shower(1000, 1), scenes::showers(1000, 1));
+    let (one, tiles) = (one.build().unwrap(), tiles.build().unwrap());
+    assert_eq!(one.len(), tiles.len());
+    for (a, b) in one.bodies().iter().zip(tiles.bodies()) {
+        assert_eq!(
+            (a.position(), a.radius(), a.is_fixed()),
+            (b.position(), b.radius(), b.is_fixed())
+        );
+    }
+    // A dome a tile, the spheres shared out evenly.
+    for (n, domes) in [(2500, 3), (10_000, 10)] {
+        let world = scenes::showers(n, 1).build().unwrap();
+        assert_eq!(world.len(), n as usize + domes);
+        assert_eq!(
+            world.bodies().iter().filter(|b| b.is_fixed()).count(),
+            domes
+        );
+    }
+    // Over a benchmark's 61 steps no sphere meets another tile's sphere or dome. The domes
+    // come first (tile t's is body t), then each tile's rain in turn.
+    let (n, per_tile) = (4000u32, 1000u64);
+    let mut world = scenes::showers(n, 1).build().unwrap();
+    let tile = |id: u64| if id < 4 { id } else { (id - 4) / per_tile };
+    let mut collisions = 0;
+    for _ in 0..61 {
+        world.step(1.0 / 60.0).unwrap();
+        for c in world.collisions() {
+            let (a, b) = (tile(c.a.index() as u64), tile(c.b.index() as u64));
+            assert_eq!(a, b, "a collision between tiles {a} and {b}");
+            collisions += 1;
+        }
+    }
+    assert!(
+        collisions > 4 * 1000,
+        "the rain landed: {collisions} collisions"
+    );
+}
+
+#[test]
 fn a_measured_run_lists_each_timed_step_and_they_add_up() {
     // A small shower: the first collisions come in the second tenth of a second.
     let m = sphere_bench::measure_ours(&scenes::shower(200, 1), 1, 20, 1.0 / 60.0, true);

@@ -71,14 +71,18 @@ pub(crate) type Pairs = Vec<(u32, u32)>;
 /// gas 1.4x; past about 80 bodies a gas is faster with the grid, a shower past about 130).
 const SMALL_SCENE: usize = 64;
 
-/// The most cells the grid's block may span for `n` bodies: 64 per body up to 2^20 cells, and
-/// 16 per body beyond. A shower falls as a lattice with one site in eight filled: about ten
-/// cells per sphere; once a small one has slid off its dome its spheres spread over far more.
-/// A cell costs a few instructions a step, a body in the hierarchy's lowest level hundreds:
-/// with 16 cells per body the 100- and 300-sphere showers ended with most of their spheres in
-/// the hierarchy, 1.1x and 1.2x slower than with 64.
+/// The most cells the grid's block may span for `n` bodies: 64 per body. A shower falls as a
+/// lattice with one site in eight filled: about ten cells per sphere; once a small one has slid
+/// off its dome its spheres spread over far more, and groups of spheres far apart (the bench's
+/// `showers`: a hundred showers side by side, over 73 m by 73 m at 100k) span mostly empty
+/// cells. A cell costs a few instructions a step (its count and start), a body in the
+/// hierarchy's lowest level hundreds: with 16 cells per body the 100- and 300-sphere showers
+/// ended with most of their spheres in the hierarchy, 1.1x and 1.2x slower than with 64 (32 and
+/// 128 no better there). Until 2026-12-05 the limit was 16 per body beyond 2^20 cells: the 100k
+/// `showers` took 1.3x as long (398 to 421 ns per sphere per step against 289 to 321; 128 per
+/// body, 278 to 282, for twice the memory: the counts take 4 bytes a cell).
 fn block_limit(n: usize) -> usize {
-    (64 * n).min(1 << 20).max(16 * n) + 64
+    64 * n + 64
 }
 
 /// The broad phase (see the module docs). Keeps its buffers between steps.

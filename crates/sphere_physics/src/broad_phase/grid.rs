@@ -14,6 +14,7 @@
 use glam::DVec3;
 
 use super::packed::{Frame, Packed, Query};
+use super::squeeze::Squeeze;
 use super::{Aabb, Pairs, floor_i32};
 
 /// How many rows a query finds before scanning them: a grid body's box meets two or three
@@ -44,8 +45,8 @@ pub(crate) struct Grid {
     inverse: DVec3,
     /// How far a box may reach beyond its cell on each side: just under half a cell.
     slack: DVec3,
-    /// The lowest cell of the dense block, and its size in cells per axis.
-    origin: Cell,
+    /// How each axis of the dense block places a cell, and the block's size in cells per axis.
+    axes: [Squeeze; 3],
     dims: [usize; 3],
     /// Bodies `0..len` are the grid's, sorted by cell: cell `c` (dense index) holds bodies
     /// `start[c]..start[c + 1]`.
@@ -156,24 +157,24 @@ impl Grid {
         std::mem::swap(&mut self.start, start);
     }
 
-    /// Lays the grid out over the block `origin`, `dims` for bodies `0..cells.len()`, already
-    /// sorted by the dense index of their cells (`cells` are theirs, in that order) as
-    /// [`Grid::swap_start`] says, with `boxes` (at least as many). Takes the cells' buffer
-    /// (leaving the grid's old one, to be refilled next step) rather than copying it.
-    pub fn layout(
-        &mut self,
-        origin: Cell,
-        dims: [usize; 3],
-        cells: &mut Vec<Cell>,
-        boxes: &[Aabb],
-    ) {
-        self.origin = origin;
-        self.dims = dims;
+    /// Lays the grid out over the block whose axes place cells as `axes` say, for bodies
+    /// `0..cells.len()`, already sorted by the dense index of their cells (`cells` are theirs,
+    /// in that order) as [`Grid::swap_start`] says, with `boxes` (at least as many). Takes the
+    /// cells' and the axes' buffers (leaving the grid's old ones, to be refilled next step)
+    /// rather than copying them.
+    pub fn layout(&mut self, axes: &mut [Squeeze; 3], cells: &mut Vec<Cell>, boxes: &[Aabb]) {
+        std::mem::swap(&mut self.axes, axes);
+        self.dims = self.axes.each_ref().map(Squeeze::len);
         self.len = cells.len();
         std::mem::swap(&mut self.cells, cells);
         self.present.clear();
         self.present.resize(self.len, true);
-        self.frame = Frame::new(corner_of(origin) * self.cell, self.cell, dims);
+        // The frame spans the block's cells before any squeeze: every box of the grid is
+        // packed by the same map, whatever lies between.
+        let ends = self.axes.each_ref().map(Squeeze::ends);
+        let first = ends.map(|(first, _)| first);
+        let span = ends.map(|(first, last)| (i64::from(last) - i64::from(first) + 1) as usize);
+        self.frame = Frame::new(corner_of(first) * self.cell, self.cell, span);
         let frame = &self.frame;
         self.boxes.clear();
         self.boxes
@@ -235,8 +236,8 @@ impl Grid {
                 flush(out);
             }
             let k = self.cells[i];
-            let c = (k[0] - self.origin[0]) as usize
-                + nx * ((k[1] - self.origin[1]) as usize + ny * (k[2] - self.origin[2]) as usize);
+            let axes = &self.axes;
+            let c = axes[0].place(k[0]) + nx * (axes[1].place(k[1]) + ny * axes[2].place(k[2]));
             let bi = &boxes[i].as_query();
             // Own cell (after i) and the next along x: one range. Then four rows of three.
             debug_assert!(c + rows[3] + 3 < start.len());
@@ -436,13 +437,12 @@ impl Grid {
             // ceil(v) = -floor(-v)
             let lo = -floor_i32(-((q.lo[a] - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7));
             let hi = floor_i32((q.hi[a] + self.slack[a]) * self.inverse[a] + 1e-7);
-            let first = self.origin[a];
-            let last = first + (self.dims[a] - 1) as i32;
+            let (first, last) = self.axes[a].ends();
             let (lo, hi) = (lo.max(first), hi.min(last));
             if lo > hi {
                 return None;
             }
-            *r = ((lo - first) as usize, (hi - first) as usize);
+            *r = (self.axes[a].place(lo), self.axes[a].place(hi));
             cells = cells.saturating_mul(r.1 - r.0 + 1);
         }
         Some((range, cells))

@@ -3,9 +3,11 @@
 //! Two tiers. Bodies of the scene's typical size (per axis, up to twice the median side:
 //! falling spheres sweep tall boxes) go to a dense uniform [`Grid`] with cells the size of the
 //! largest of them, sorted by cell, so a query reads nine short ranges of consecutive bodies.
-//! Everything else (a dome, walls, big balls, a body that strays far from the others, a body
-//! whose box outgrows its cell after a collision)
-//! goes to a [`Hierarchy`] of grids whose cells double from level to level. The step works in
+//! Its block of cells spans the bodies' cells, with long runs of empty cells along an axis
+//! squeezed out (groups far apart, see [`squeeze`]) when the whole would be too large.
+//! Everything else (a dome, walls, big balls, a body that strays far from the others where
+//! even the squeezed block would be too large, a body whose box outgrows its cell after a
+//! collision) goes to a [`Hierarchy`] of grids whose cells double from level to level. The step works in
 //! the grid's order ([`BroadPhase::sort`]): neighbours in space are neighbours in memory.
 //! Scenes of a few bodies skip both: all pairs are cheaper. Nothing allocates once the buffers
 //! have grown to the scene.
@@ -13,11 +15,13 @@
 mod grid;
 mod hierarchy;
 mod packed;
+mod squeeze;
 
 use glam::DVec3;
 
 use grid::{Cell, Grid};
 use hierarchy::Hierarchy;
+use squeeze::Squeeze;
 
 /// Axis-aligned box.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -94,8 +98,8 @@ pub(crate) struct BroadPhase {
     hierarchy: Hierarchy,
     /// The typical box size: the grid's cell and the hierarchy's finest.
     base: f64,
-    origin: Cell,
-    dims: [usize; 3],
+    /// How each axis of the block places a cell (see [`squeeze`]).
+    axes: [Squeeze; 3],
     /// New index `p` is old index `permutation[p]`.
     permutation: Vec<u32>,
     /// Each body's grid cell (in the order given to `sort`), if it goes to the grid.
@@ -126,13 +130,47 @@ impl BroadPhase {
             .extend(boxes.iter().map(|b| self.grid.cell_of(b)));
         let limit = block_limit(n);
         self.choose_block(limit);
-        let (origin, dims) = (self.origin, self.dims);
+        // The axes out of `self` while the sort reads them (no copy: their buffers move).
+        let axes = std::mem::take(&mut self.axes);
+        let dims = axes.each_ref().map(Squeeze::len);
+        if axes.iter().any(Squeeze::squeezed) {
+            self.sort_by_cell(n, limit, dims, |k| {
+                (
+                    axes[0].place(k[0]),
+                    axes[1].place(k[1]),
+                    axes[2].place(k[2]),
+                )
+            });
+        } else {
+            // Nearly every scene: a cell's place is its offset from the block's first cell,
+            // worked out without the axes' lookups (with them the sort took a fifth longer).
+            let first = axes.each_ref().map(|a| a.ends().0);
+            self.sort_by_cell(n, limit, dims, |k| {
+                (
+                    (k[0] - first[0]) as usize,
+                    (k[1] - first[1]) as usize,
+                    (k[2] - first[2]) as usize,
+                )
+            });
+        }
+        self.axes = axes;
+        self.grid.swap_start(&mut self.counts);
+        Some(&self.permutation)
+    }
+
+    /// Counting-sorts the grid's bodies by cell, each cell's place in the block `dims` (per
+    /// axis) as `place` says, into [`BroadPhase::permutation`] (the bodies the hierarchy takes
+    /// after them, in their order), their cells into `sorted_cells`, and each cell's start
+    /// into `counts`, for a block of at most `limit` cells.
+    fn sort_by_cell(
+        &mut self,
+        n: usize,
+        limit: usize,
+        dims: [usize; 3],
+        place: impl Fn(Cell) -> (usize, usize, usize),
+    ) {
         let index = |k: Cell| {
-            let (x, y, z) = (
-                (k[0] - origin[0]) as usize,
-                (k[1] - origin[1]) as usize,
-                (k[2] - origin[2]) as usize,
-            );
+            let (x, y, z) = place(k);
             x + dims[0] * (y + dims[1] * z)
         };
         // Counting sort by cell; the rest after, in their order.
@@ -176,8 +214,6 @@ impl BroadPhase {
                 }
             }
         }
-        self.grid.swap_start(&mut self.counts);
-        Some(&self.permutation)
     }
 
     /// The typical box, per axis: the longest side up to twice the median side (the median
@@ -225,6 +261,9 @@ impl BroadPhase {
         // out first needs it well after its first steps, and must not allocate then.
         self.coordinates.clear();
         self.coordinates.reserve(self.cells.len());
+        for axis in &mut self.axes {
+            axis.reserve(self.cells.len());
+        }
         let limit = limit as u64;
         let mut lo = [i32::MAX; 3];
         let mut hi = [i32::MIN; 3];
@@ -235,7 +274,9 @@ impl BroadPhase {
             }
         }
         if lo[0] > hi[0] {
-            (self.origin, self.dims) = ([0; 3], [1; 3]);
+            for axis in &mut self.axes {
+                axis.plain(0, 0);
+            }
             return;
         }
         // Cells in the block from `lo` to `hi` with its empty border (see below).
@@ -245,6 +286,16 @@ impl BroadPhase {
                 .fold(1u64, u64::saturating_mul)
         };
         if volume(&lo, &hi) > limit {
+            // Groups far apart along an axis: squeeze out the empty cells between them.
+            let mut cells = 1u64;
+            for a in 0..3 {
+                let occupied = self.cells.iter().flatten().map(|k| k[a]);
+                let len = self.axes[a].squeeze(lo[a] - 1, hi[a] + 1, occupied, self.cells.len());
+                cells = cells.saturating_mul(len as u64);
+            }
+            if cells <= limit {
+                return;
+            }
             // Keep the middle 99% on each axis, then trim the longest axis until it fits.
             for a in 0..3 {
                 self.coordinates.clear();
@@ -273,8 +324,9 @@ impl BroadPhase {
         }
         // An empty cell on every side, so that every grid body's 26 neighbour cells are in the
         // block: the grid's pair scan needs no bounds checks.
-        self.origin = lo.map(|v| v - 1);
-        self.dims = [0, 1, 2].map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 3) as usize);
+        for (a, axis) in self.axes.iter_mut().enumerate() {
+            axis.plain(lo[a] - 1, hi[a] + 1);
+        }
     }
 
     /// Builds both tiers for `boxes`, in the order [`BroadPhase::sort`] chose.
@@ -283,7 +335,7 @@ impl BroadPhase {
             return;
         }
         self.grid
-            .layout(self.origin, self.dims, &mut self.sorted_cells, boxes);
+            .layout(&mut self.axes, &mut self.sorted_cells, boxes);
         self.hierarchy.rebuild(boxes, self.grid.len(), self.base);
     }
 

@@ -1,5 +1,5 @@
 //! The benchmark scenes, sized by sphere count: a shower onto a fixed dome, a gas in a box, a
-//! pile in an open box, and showers side by side (a sparse scene).
+//! pile in an open box, showers side by side (a sparse scene) and two gases far apart.
 
 use sphere_physics::SceneDesc;
 
@@ -95,6 +95,36 @@ pub fn gas(n: u32, seed: u64) -> SceneDesc {
         hi = side / 2.0,
     ))
     .expect("the gas scene is valid")
+}
+
+/// The distance between [`apart`]'s two groups, in metres.
+pub const APART: f64 = 1000.0;
+
+/// `n` spheres as two gases of half as many (`seed` and `seed + 1`; the first takes the odd
+/// one), each as the [`gas`] of its count would be (its box, lattice and speed), the two boxes
+/// [`APART`] metres apart along x, with no walls (over a second a gas spreads by a metre):
+/// groups of spheres far apart, which one block of grid cells cannot span without squeezing
+/// out the empty space between them.
+pub fn apart(n: u32, seed: u64) -> SceneDesc {
+    let half = n / 2;
+    let side = side_for(4.0 * f64::from(n - half));
+    let gas = |count: u32, seed: u64, x: f64| {
+        format!(
+            "Gas(count: {count}, seed: {seed}, min: ({x0:?}, {lo:?}, {lo:?}),
+                 max: ({x1:?}, {hi:?}, {hi:?}), radius: {RADIUS:?}, speed: 1.0, walls: false)",
+            x0 = x - side / 2.0,
+            x1 = x + side / 2.0,
+            lo = -side / 2.0,
+            hi = side / 2.0,
+        )
+    };
+    SceneDesc::from_ron(&format!(
+        "(name: \"apart {n}\", gravity: (0.0, 0.0, 0.0), restitution: 1.0,
+          generate: [{}, {}])",
+        gas(n - half, seed, 0.0),
+        gas(half, seed + 1, APART)
+    ))
+    .expect("the apart scene is valid")
 }
 
 /// `n` spheres of radius 0.05 (restitution 0.5) dropped into an open box under gravity: a

@@ -107,6 +107,45 @@ fn the_showers_are_the_1k_shower_side_by_side_and_stay_apart() {
 }
 
 #[test]
+fn the_two_gases_apart_are_the_gas_split_in_two_a_kilometre_apart() {
+    for n in [1000, 10_001] {
+        let world = scenes::apart(n, 1).build().unwrap();
+        assert_eq!(world.len(), n as usize);
+        assert!(world.bodies().iter().all(|b| !b.is_fixed()));
+        // Split in two at x = 500 m: as many on each side (the first has the odd one), each
+        // group within the box of the gas of its count, at the gas's speed.
+        let near: Vec<_> = world
+            .bodies()
+            .iter()
+            .filter(|b| b.position().x < 500.0)
+            .collect();
+        let far: Vec<_> = world
+            .bodies()
+            .iter()
+            .filter(|b| b.position().x >= 500.0)
+            .collect();
+        assert_eq!(
+            (near.len(), far.len()),
+            (n.div_ceil(2) as usize, n as usize / 2)
+        );
+        let gas = scenes::gas(n.div_ceil(2), 1).build().unwrap();
+        let reach = gas
+            .bodies()
+            .iter()
+            .filter(|b| !b.is_fixed())
+            .map(|b| b.position().abs().max_element())
+            .fold(0.0, f64::max);
+        for (group, x) in [(&near, 0.0), (&far, scenes::APART)] {
+            for b in group {
+                let offset = b.position() - sphere_physics::glam::DVec3::X * x;
+                assert!(offset.abs().max_element() <= reach + RADIUS, "{offset}");
+                assert!((b.velocity().length() - 1.0).abs() < 1e-12);
+            }
+        }
+    }
+}
+
+#[test]
 fn a_measured_run_lists_each_timed_step_and_they_add_up() {
     // A small shower: the first collisions come in the second tenth of a second.
     let m = sphere_bench::measure_ours(&scenes::shower(200, 1), 1, 20, 1.0 / 60.0, true);

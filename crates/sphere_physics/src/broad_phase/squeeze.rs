@@ -40,7 +40,8 @@ impl Squeeze {
 
     /// The block's cells `first..=last`, with the chunks no cell of `occupied` is in or beside
     /// squeezed out (`occupied` within `first + 1 ..= last - 1`); chunks of one cell, or as
-    /// many as keep them to about `2 · bodies`. Returns the cells left.
+    /// many as keep them to about `2 · bodies`. Returns the cells left (`usize::MAX`, and no
+    /// squeeze, past two billion).
     pub fn squeeze(
         &mut self,
         first: i32,
@@ -72,20 +73,31 @@ impl Squeeze {
                 }
             }
         }
-        let mut place = 0u32;
+        let mut place = 0u64;
         for c in 0..chunks {
+            if place >= u64::from(OUT) {
+                // More places than the table can mark (billions of cells kept): no squeeze
+                // helps a block that large.
+                self.squeezed = false;
+                return usize::MAX;
+            }
+            let at = place as u32;
             if self.places[c] == 0 {
-                self.places[c] = OUT | place;
+                self.places[c] = OUT | at;
             } else {
-                self.places[c] = place;
+                self.places[c] = at;
                 place += 1 << bits;
             }
         }
         self.first = first;
         self.last = last;
-        self.squeezed = true;
+        self.squeezed = place < u64::from(OUT);
         self.bits = bits;
-        self.len = place as usize;
+        self.len = if self.squeezed {
+            place as usize
+        } else {
+            usize::MAX
+        };
         self.len
     }
 

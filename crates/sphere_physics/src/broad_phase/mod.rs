@@ -7,8 +7,9 @@
 //! squeezed out (groups far apart, see [`squeeze`]) when the whole would be too large.
 //! Everything else (a dome, walls, big balls, a body that strays far from the others where
 //! even the squeezed block would be too large, a body whose box outgrows its cell after a
-//! collision) goes to a [`Hierarchy`] of grids whose cells double from level to level. The step works in
-//! the grid's order ([`BroadPhase::sort`]): neighbours in space are neighbours in memory.
+//! collision) goes to a [`Hierarchy`] of grids whose cells double from level to level. The
+//! step works in the grid's order ([`BroadPhase::sort`]): neighbours in space are neighbours
+//! in memory.
 //! Scenes of a few bodies skip both: all pairs are cheaper. Nothing allocates once the buffers
 //! have grown to the scene.
 

@@ -2,7 +2,7 @@
 //! several sizes, ours against rapier3d 0.36 (with `--features rapier`), as a markdown table.
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
-//!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart] [--repeat 1] [--phases]
+//!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases]
 //!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step; with
@@ -92,13 +92,11 @@ fn parse() -> Result<Options, String> {
             "--settle" => options.settle = positive(value()?, flag)?,
             "--scenes" => {
                 options.scenes = value()?.split(',').map(str::to_owned).collect();
-                if let Some(bad) = options
-                    .scenes
-                    .iter()
-                    .find(|s| !["shower", "gas", "pile", "showers", "apart"].contains(&s.as_str()))
-                {
+                if let Some(bad) = options.scenes.iter().find(|s| {
+                    !["shower", "gas", "pile", "showers", "apart", "sparse"].contains(&s.as_str())
+                }) {
                     return Err(format!(
-                        "unknown scene '{bad}' (shower, gas, pile, showers, apart)"
+                        "unknown scene '{bad}' (shower, gas, pile, showers, apart, sparse)"
                     ));
                 }
             }
@@ -115,7 +113,7 @@ fn parse() -> Result<Options, String> {
             "--rapier-flat-walls" => options.rapier_flat_walls = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
                 );
                 std::process::exit(0);
             }
@@ -194,6 +192,7 @@ fn main() {
                 "shower" => scenes::shower(n, 1),
                 "showers" => scenes::showers(n, 1),
                 "apart" => scenes::apart(n, 1),
+                "sparse" => scenes::sparse(n, 1),
                 "pile" => scenes::pile(n, 1),
                 _ => scenes::gas(n, 1),
             };

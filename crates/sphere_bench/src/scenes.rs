@@ -97,6 +97,26 @@ pub fn gas(n: u32, seed: u64) -> SceneDesc {
     .expect("the gas scene is valid")
 }
 
+/// How many lattice sites [`sparse`] has per sphere: one in a thousand filled, about a metre
+/// (ten diameters) between neighbours.
+pub const SPARSE: u32 = 1000;
+
+/// `n` spheres as the [`gas`]'s (radius 0.05, speed 1, elastic, walls), but spread thin
+/// through their box: one lattice site in [`SPARSE`] filled. Scattered evenly, with no empty
+/// slab between groups to leave out: a grid of cells the spheres' size spans some 800 cells a
+/// sphere.
+pub fn sparse(n: u32, seed: u64) -> SceneDesc {
+    let side = side_for(f64::from(SPARSE) * f64::from(n));
+    SceneDesc::from_ron(&format!(
+        "(name: \"sparse {n}\", gravity: (0.0, 0.0, 0.0), restitution: 1.0,
+          generate: [Gas(count: {n}, seed: {seed}, min: ({lo:?}, {lo:?}, {lo:?}),
+                         max: ({hi:?}, {hi:?}, {hi:?}), radius: {RADIUS:?}, speed: 1.0)])",
+        lo = -side / 2.0,
+        hi = side / 2.0,
+    ))
+    .expect("the sparse scene is valid")
+}
+
 /// The distance between [`apart`]'s two groups, in metres.
 pub const APART: f64 = 1000.0;
 

@@ -185,3 +185,58 @@ fn the_mean_kinetic_energy_is_over_the_timed_steps() {
     assert_eq!(m.kinetic_after, energies[9]);
     assert!(energies[0] < mean && mean < energies[9]);
 }
+
+#[test]
+fn the_sparse_gas_is_the_gas_scattered_evenly_and_far_apart() {
+    let n = 1000;
+    let sparse = scenes::sparse(n, 1).build().unwrap();
+    let gas = scenes::gas(n, 1).build().unwrap();
+    // The median distance from a sphere to its nearest neighbour.
+    let nearest = |world: &sphere_physics::World| {
+        let at: Vec<_> = world
+            .bodies()
+            .iter()
+            .filter(|b| !b.is_fixed())
+            .map(|b| b.position())
+            .collect();
+        let mut d: Vec<f64> = at
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                at.iter()
+                    .enumerate()
+                    .filter(|&(j, _)| j != i)
+                    .map(|(_, q)| p.distance(*q))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        d.sort_by(f64::total_cmp);
+        (at, d[d.len() / 2])
+    };
+    let (at, far) = nearest(&sparse);
+    let (_, near) = nearest(&gas);
+    assert_eq!(at.len(), n as usize);
+    assert_eq!(sparse.len(), n as usize + 6, "the gas's six walls");
+    assert!(
+        far > 0.5 && near < 0.2,
+        "nearest neighbours {far} m apart against the gas's {near}"
+    );
+    // Evenly: every octant of the box holds about an eighth of the spheres.
+    let mut octants = [0; 8];
+    for p in &at {
+        octants
+            [usize::from(p.x > 0.0) + 2 * usize::from(p.y > 0.0) + 4 * usize::from(p.z > 0.0)] += 1;
+    }
+    assert!(
+        octants.iter().all(|&k| (90..160).contains(&k)),
+        "{octants:?}"
+    );
+    // All at the gas's speed.
+    assert!(
+        sparse
+            .bodies()
+            .iter()
+            .filter(|b| !b.is_fixed())
+            .all(|b| (b.velocity().length() - 1.0).abs() < 1e-12)
+    );
+}

@@ -4,7 +4,10 @@
 //! falling spheres sweep tall boxes) go to a dense uniform [`Grid`] with cells the size of the
 //! largest of them, sorted by cell, so a query reads nine short ranges of consecutive bodies.
 //! Its block of cells spans the bodies' cells, with long runs of empty cells along an axis
-//! squeezed out (groups far apart, see [`squeeze`]) when the whole would be too large.
+//! squeezed out (groups far apart, see [`squeeze`]) when the whole would be too large, and
+//! cells up to [`MAX_COARSE`] times larger on each side when even the middle 99% of its bodies
+//! spans too many (bodies scattered evenly, far apart), unless the larger cells would crowd a
+//! dense group among them.
 //! Everything else (a dome, walls, big balls, a body that strays far from the others where
 //! even the squeezed block would be too large, a body whose box outgrows its cell after a
 //! collision) goes to a [`Hierarchy`] of grids whose cells double from level to level. The
@@ -90,6 +93,36 @@ fn block_limit(n: usize) -> usize {
     64 * n + 64
 }
 
+/// The most times the typical box a grid cell may be on each side: when even the middle 99%
+/// of the grid's bodies spans more cells than [`block_limit`] allows (spheres scattered
+/// evenly, far apart), cells two, four or eight times larger each way, the least that fits,
+/// rather than most of the bodies sent to the hierarchy. A sparse gas of spheres 0.1 m across,
+/// a metre apart (the bench's `sparse`), took 175 to 264 ns per sphere per step with most of
+/// its spheres in the hierarchy, and 75 to 122 ns in cells four times larger.
+const MAX_COARSE: u32 = 8;
+
+/// Larger cells are given up if their bodies share a cell with more than twice this many
+/// others on average (pairs in one cell, over bodies).
+const CROWDED: u64 = 2;
+
+/// The cells of the block from cell `lo` to `hi` with its empty border.
+fn volume(lo: &[i32; 3], hi: &[i32; 3]) -> u64 {
+    (0..3)
+        .map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 3) as u64)
+        .fold(1u64, u64::saturating_mul)
+}
+
+/// The cells of the block from cell `lo` to `hi` (with its empty border) once cells are
+/// `factor` times larger on each side.
+fn coarse_volume(lo: &[i32; 3], hi: &[i32; 3], factor: u32) -> u64 {
+    (0..3)
+        .map(|a| {
+            let span = (i64::from(hi[a]) - i64::from(lo[a]) + 1) as u64;
+            span.div_ceil(u64::from(factor)) + 3
+        })
+        .fold(1u64, u64::saturating_mul)
+}
+
 /// The broad phase (see the module docs). Keeps its buffers between steps.
 #[derive(Debug, Default)]
 pub(crate) struct BroadPhase {
@@ -111,6 +144,10 @@ pub(crate) struct BroadPhase {
     /// The sampled boxes' sides per axis (`typical_box`).
     sides: [Vec<f64>; 3],
     coordinates: Vec<i32>,
+    /// Each body's cell of the typical size while the grid tries larger ones, and the bounds
+    /// of the block they would be trimmed to (see [`BroadPhase::choose_block`]).
+    fine_cells: Vec<Option<Cell>>,
+    fine_bounds: ([i32; 3], [i32; 3]),
 }
 
 impl BroadPhase {
@@ -125,51 +162,73 @@ impl BroadPhase {
         }
         let typical = self.typical_box(boxes);
         self.base = typical.max_element();
+        let limit = block_limit(n);
         self.grid.set_cell(typical);
         self.cells.clear();
         self.cells
             .extend(boxes.iter().map(|b| self.grid.cell_of(b)));
-        let limit = block_limit(n);
-        self.choose_block(limit);
+        let coarse = self.choose_block(limit);
+        if coarse > 1 {
+            self.grid.set_cell(typical * f64::from(coarse));
+            if !self.sort_in_block(n, limit, CROWDED) {
+                // The larger cells crowd a dense group among the scattered bodies: the typical
+                // cells after all, with the stragglers in the hierarchy.
+                self.grid.set_cell(typical);
+                std::mem::swap(&mut self.cells, &mut self.fine_cells);
+                let (lo, hi) = self.fine_bounds;
+                self.trim(lo, hi, limit as u64);
+                self.sort_in_block(n, limit, u64::MAX);
+            }
+        } else {
+            self.sort_in_block(n, limit, u64::MAX);
+        }
+        self.grid.swap_start(&mut self.counts);
+        Some(&self.permutation)
+    }
+
+    /// Counting-sorts the grid's bodies by cell over the block the axes place them in (see
+    /// [`BroadPhase::sort_by_cell`], which may give up if `crowded`).
+    fn sort_in_block(&mut self, n: usize, limit: usize, crowded: u64) -> bool {
         // The axes out of `self` while the sort reads them (no copy: their buffers move).
         let axes = std::mem::take(&mut self.axes);
         let dims = axes.each_ref().map(Squeeze::len);
-        if axes.iter().any(Squeeze::squeezed) {
-            self.sort_by_cell(n, limit, dims, |k| {
+        let sorted = if axes.iter().any(Squeeze::squeezed) {
+            self.sort_by_cell(n, limit, dims, crowded, |k| {
                 (
                     axes[0].place(k[0]),
                     axes[1].place(k[1]),
                     axes[2].place(k[2]),
                 )
-            });
+            })
         } else {
             // Nearly every scene: a cell's place is its offset from the block's first cell,
             // worked out without the axes' lookups (with them the sort took a fifth longer).
             let first = axes.each_ref().map(|a| a.ends().0);
-            self.sort_by_cell(n, limit, dims, |k| {
+            self.sort_by_cell(n, limit, dims, crowded, |k| {
                 (
                     (k[0] - first[0]) as usize,
                     (k[1] - first[1]) as usize,
                     (k[2] - first[2]) as usize,
                 )
-            });
-        }
+            })
+        };
         self.axes = axes;
-        self.grid.swap_start(&mut self.counts);
-        Some(&self.permutation)
+        sorted
     }
 
     /// Counting-sorts the grid's bodies by cell, each cell's place in the block `dims` (per
     /// axis) as `place` says, into [`BroadPhase::permutation`] (the bodies the hierarchy takes
     /// after them, in their order), their cells into `sorted_cells`, and each cell's start
-    /// into `counts`, for a block of at most `limit` cells.
+    /// into `counts`, for a block of at most `limit` cells. Gives up (returns false) if the
+    /// pairs of bodies sharing a cell are more than `crowded` times the bodies.
     fn sort_by_cell(
         &mut self,
         n: usize,
         limit: usize,
         dims: [usize; 3],
+        crowded: u64,
         place: impl Fn(Cell) -> (usize, usize, usize),
-    ) {
+    ) -> bool {
         let index = |k: Cell| {
             let (x, y, z) = place(k);
             x + dims[0] * (y + dims[1] * z)
@@ -181,10 +240,15 @@ impl BroadPhase {
         self.counts.clear();
         self.counts.reserve(limit + 1);
         self.counts.resize(total + 1, 0);
-        let mut in_grid = 0;
+        let (mut in_grid, mut shared) = (0usize, 0u64);
         for k in self.cells.iter().flatten() {
-            self.counts[index(*k)] += 1;
+            let count = &mut self.counts[index(*k)];
+            shared += u64::from(*count);
+            *count += 1;
             in_grid += 1;
+        }
+        if shared > crowded.saturating_mul(in_grid as u64) {
+            return false;
         }
         // Running sums (a loop over the slice: indexing `self.counts` reloaded and
         // bounds-checked it for each of the several cells per body): each cell's end.
@@ -215,6 +279,7 @@ impl BroadPhase {
                 }
             }
         }
+        true
     }
 
     /// The typical box, per axis: the longest side up to twice the median side (the median
@@ -256,12 +321,18 @@ impl BroadPhase {
 
     /// The block of cells the grid spans: all the grid bodies' cells and an empty border, cut
     /// down to at most `limit` cells ([`block_limit`]; stragglers go to the hierarchy
-    /// instead).
-    fn choose_block(&mut self, limit: usize) {
+    /// instead). Returns how many times larger than the typical box the cells are on each
+    /// side: 1, unless even the middle 99% of the bodies spans more than `limit` cells (spread
+    /// evenly, far apart), when the bodies' cells are made [`MAX_COARSE`] times larger at most,
+    /// the cells of the typical size kept in `fine_cells` and their trimmed block's bounds in
+    /// `fine_bounds`.
+    fn choose_block(&mut self, limit: usize) -> u32 {
         // Room for the trimming below, whether or not this step trims: a scene that spreads
         // out first needs it well after its first steps, and must not allocate then.
         self.coordinates.clear();
         self.coordinates.reserve(self.cells.len());
+        self.fine_cells.clear();
+        self.fine_cells.reserve(self.cells.len());
         for axis in &mut self.axes {
             axis.reserve(self.cells.len());
         }
@@ -278,53 +349,92 @@ impl BroadPhase {
             for axis in &mut self.axes {
                 axis.plain(0, 0);
             }
-            return;
+            return 1;
         }
-        // Cells in the block from `lo` to `hi` with its empty border (see below).
-        let volume = |lo: &[i32; 3], hi: &[i32; 3]| {
-            (0..3)
-                .map(|a| (i64::from(hi[a]) - i64::from(lo[a]) + 3) as u64)
-                .fold(1u64, u64::saturating_mul)
-        };
-        if volume(&lo, &hi) > limit {
-            // Groups far apart along an axis: squeeze out the empty cells between them.
-            let mut cells = 1u64;
-            for a in 0..3 {
-                let occupied = self.cells.iter().flatten().map(|k| k[a]);
-                let len = self.axes[a].squeeze(lo[a] - 1, hi[a] + 1, occupied, self.cells.len());
-                cells = cells.saturating_mul(len as u64);
-            }
-            if cells <= limit {
-                return;
-            }
-            // Keep the middle 99% on each axis, then trim the longest axis until it fits.
-            for a in 0..3 {
-                self.coordinates.clear();
-                self.coordinates
-                    .extend(self.cells.iter().flatten().map(|k| k[a]));
-                let m = self.coordinates.len();
-                let low = *self.coordinates.select_nth_unstable(m / 200).1;
-                let high = *self.coordinates.select_nth_unstable(m - 1 - m / 200).1;
-                (lo[a], hi[a]) = (low, high);
-            }
-            while volume(&lo, &hi) > limit {
-                let a = (0..3)
-                    .max_by_key(|&a| i64::from(hi[a]) - i64::from(lo[a]))
-                    .unwrap_or(0);
-                let cut = ((i64::from(hi[a]) - i64::from(lo[a])) / 16).max(1) as i32;
-                lo[a] += cut;
-                hi[a] = (hi[a] - cut).max(lo[a]);
-            }
-            for cell in &mut self.cells {
-                if let Some(k) = cell
-                    && (0..3).any(|a| k[a] < lo[a] || k[a] > hi[a])
-                {
-                    *cell = None;
-                }
+        if volume(&lo, &hi) <= limit {
+            self.plain(lo, hi);
+            return 1;
+        }
+        self.choose_spread_block(lo, hi, limit)
+    }
+
+    /// [`BroadPhase::choose_block`] for bodies whose cells from `lo` to `hi` span more than
+    /// `limit` (rare: kept out of the common path).
+    #[cold]
+    #[inline(never)]
+    fn choose_spread_block(&mut self, mut lo: [i32; 3], mut hi: [i32; 3], limit: u64) -> u32 {
+        // Groups far apart along an axis: squeeze out the empty cells between them.
+        let mut cells = 1u64;
+        for a in 0..3 {
+            let occupied = self.cells.iter().flatten().map(|k| k[a]);
+            let len = self.axes[a].squeeze(lo[a] - 1, hi[a] + 1, occupied, self.cells.len());
+            cells = cells.saturating_mul(len as u64);
+        }
+        if cells <= limit {
+            return 1;
+        }
+        // The middle 99% on each axis.
+        let all = (lo, hi);
+        for a in 0..3 {
+            self.coordinates.clear();
+            self.coordinates
+                .extend(self.cells.iter().flatten().map(|k| k[a]));
+            let m = self.coordinates.len();
+            let low = *self.coordinates.select_nth_unstable(m / 200).1;
+            let high = *self.coordinates.select_nth_unstable(m - 1 - m / 200).1;
+            (lo[a], hi[a]) = (low, high);
+        }
+        if volume(&lo, &hi) <= limit {
+            // A group with stragglers around it.
+            self.trim(lo, hi, limit);
+            return 1;
+        }
+        // Spread evenly: cells `2^bits` times larger on each side, each the union of that many
+        // cubed (flooring never decreases, so the bounds stay the bounds, and a box within a
+        // cell's envelope is within the larger cell's).
+        let mut bits = 1;
+        while (1 << bits) < MAX_COARSE && coarse_volume(&lo, &hi, 1 << bits) > limit {
+            bits += 1;
+        }
+        self.fine_cells.clone_from(&self.cells);
+        self.fine_bounds = (lo, hi);
+        for k in self.cells.iter_mut().flatten() {
+            *k = k.map(|c| c >> bits);
+        }
+        let (all_lo, all_hi) = (all.0.map(|c| c >> bits), all.1.map(|c| c >> bits));
+        if volume(&all_lo, &all_hi) <= limit {
+            self.plain(all_lo, all_hi);
+        } else {
+            self.trim(lo.map(|c| c >> bits), hi.map(|c| c >> bits), limit);
+        }
+        1 << bits
+    }
+
+    /// The block from cell `lo` to `hi` cut down (its longest axis first) to at most `limit`
+    /// cells, the bodies outside it sent to the hierarchy.
+    fn trim(&mut self, mut lo: [i32; 3], mut hi: [i32; 3], limit: u64) {
+        while volume(&lo, &hi) > limit {
+            let a = (0..3)
+                .max_by_key(|&a| i64::from(hi[a]) - i64::from(lo[a]))
+                .unwrap_or(0);
+            let cut = ((i64::from(hi[a]) - i64::from(lo[a])) / 16).max(1) as i32;
+            lo[a] += cut;
+            hi[a] = (hi[a] - cut).max(lo[a]);
+        }
+        for cell in &mut self.cells {
+            if let Some(k) = cell
+                && (0..3).any(|a| k[a] < lo[a] || k[a] > hi[a])
+            {
+                *cell = None;
             }
         }
-        // An empty cell on every side, so that every grid body's 26 neighbour cells are in the
-        // block: the grid's pair scan needs no bounds checks.
+        self.plain(lo, hi);
+    }
+
+    /// The block from cell `lo` to `hi` with an empty cell on every side, so that every grid
+    /// body's 26 neighbour cells are in the block (the grid's pair scan needs no bounds
+    /// checks), nothing squeezed.
+    fn plain(&mut self, lo: [i32; 3], hi: [i32; 3]) {
         for (a, axis) in self.axes.iter_mut().enumerate() {
             axis.plain(lo[a] - 1, hi[a] + 1);
         }

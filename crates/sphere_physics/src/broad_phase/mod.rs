@@ -97,8 +97,9 @@ fn block_limit(n: usize) -> usize {
 /// of the grid's bodies spans more cells than [`block_limit`] allows (spheres scattered
 /// evenly, far apart), cells two, four or eight times larger each way, the least that fits,
 /// rather than most of the bodies sent to the hierarchy. A sparse gas of spheres 0.1 m across,
-/// a metre apart (the bench's `sparse`), took 175 to 264 ns per sphere per step with most of
-/// its spheres in the hierarchy, and 75 to 122 ns in cells four times larger.
+/// a metre apart (the bench's `sparse`), took 177 / 192 / 250 ns per sphere per step at 1k /
+/// 10k / 100k with most of its spheres in the hierarchy, and 80 / 75 / 106 in cells four times
+/// larger.
 const MAX_COARSE: u32 = 8;
 
 /// Larger cells are given up if their bodies share a cell with more than twice this many

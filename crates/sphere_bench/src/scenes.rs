@@ -86,15 +86,7 @@ pub fn showers(n: u32, seed: u64) -> SceneDesc {
 /// `n` spheres of radius 0.05 at speed 1 in random directions, a quarter of the lattice filled,
 /// in a box closed by six fixed wall spheres; elastic, no gravity.
 pub fn gas(n: u32, seed: u64) -> SceneDesc {
-    let side = side_for(4.0 * f64::from(n));
-    SceneDesc::from_ron(&format!(
-        "(name: \"gas {n}\", gravity: (0.0, 0.0, 0.0), restitution: 1.0,
-          generate: [Gas(count: {n}, seed: {seed}, min: ({lo:?}, {lo:?}, {lo:?}),
-                         max: ({hi:?}, {hi:?}, {hi:?}), radius: {RADIUS:?}, speed: 1.0)])",
-        lo = -side / 2.0,
-        hi = side / 2.0,
-    ))
-    .expect("the gas scene is valid")
+    walled_gas("gas", n, seed, 4)
 }
 
 /// How many lattice sites [`sparse`] has per sphere: one in a thousand filled, about a metre
@@ -106,15 +98,20 @@ pub const SPARSE: u32 = 1000;
 /// slab between groups to leave out: a grid of cells the spheres' size spans some 800 cells a
 /// sphere.
 pub fn sparse(n: u32, seed: u64) -> SceneDesc {
-    let side = side_for(f64::from(SPARSE) * f64::from(n));
+    walled_gas("sparse", n, seed, SPARSE)
+}
+
+/// The [`gas`] of `n` spheres named `name` with one lattice site in `sites` filled.
+fn walled_gas(name: &str, n: u32, seed: u64, sites: u32) -> SceneDesc {
+    let side = side_for(f64::from(sites) * f64::from(n));
     SceneDesc::from_ron(&format!(
-        "(name: \"sparse {n}\", gravity: (0.0, 0.0, 0.0), restitution: 1.0,
+        "(name: \"{name} {n}\", gravity: (0.0, 0.0, 0.0), restitution: 1.0,
           generate: [Gas(count: {n}, seed: {seed}, min: ({lo:?}, {lo:?}, {lo:?}),
                          max: ({hi:?}, {hi:?}, {hi:?}), radius: {RADIUS:?}, speed: 1.0)])",
         lo = -side / 2.0,
         hi = side / 2.0,
     ))
-    .expect("the sparse scene is valid")
+    .expect("the gas scenes are valid")
 }
 
 /// The distance between [`apart`]'s two groups, in metres.

@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::{head_on_pair, step_head_on_pairs};
+use common::{head_on_lattice, step_head_on_pairs};
 use proptest::prelude::*;
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -22,18 +22,7 @@ const DT: f64 = 1.0 / 60.0;
 /// by 7, along x, y and z in turn (dense enough for the squeezed block to hold them all: a
 /// group as sparse as one pair a cubic metre goes to the general tier, as before).
 fn group(origin: DVec3) -> Vec<[SphereDesc; 2]> {
-    let axes = [DVec3::X, DVec3::Y, DVec3::Z];
-    let mut pairs = Vec::new();
-    for i in 0..7 {
-        for j in 0..7 {
-            for k in 0..7 {
-                let at = DVec3::new(f64::from(i), f64::from(j), f64::from(k)) * 0.5;
-                let axis = axes[(i + j + k) as usize % 3];
-                pairs.push(head_on_pair(origin + at, axis, RADIUS, GAP, SPEED));
-            }
-        }
-    }
-    pairs
+    head_on_lattice(origin, 7, 0.5, RADIUS, GAP, SPEED)
 }
 
 #[test]

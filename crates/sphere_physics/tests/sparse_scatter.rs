@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::head_on_pair;
+use common::{head_on_lattice, head_on_pair};
 use proptest::prelude::*;
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
@@ -86,17 +86,7 @@ fn lattice(origin: DVec3, side: u32, spacing: f64) -> Vec<[SphereDesc; 3]> {
 
 /// Head-on pairs 0.3 m apart, 6 by 6 by 6, from `origin`: a dense group.
 fn dense_pairs(origin: DVec3) -> Vec<[SphereDesc; 2]> {
-    let mut pairs = Vec::new();
-    for i in 0..6 {
-        for j in 0..6 {
-            for k in 0..6 {
-                let at = DVec3::new(f64::from(i), f64::from(j), f64::from(k)) * 0.3;
-                let axis = AXES[(i + j + k) as usize % 3];
-                pairs.push(head_on_pair(origin + at, axis, RADIUS, GAP, SPEED));
-            }
-        }
-    }
-    pairs
+    head_on_lattice(origin, 6, 0.3, RADIUS, GAP, SPEED)
 }
 
 #[test]

@@ -1,6 +1,6 @@
 //! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
 //! cases it found, the creep allowance, a sheet of spheres over fixed ones, head-on pairs
-//! that must each collide within one step, a pit of spheres dropped into an open box,
+//! (alone or on a lattice) that must each collide within one step, a pit of spheres dropped into an open box,
 //! spheres among others hanging on strings, a crowd placed overlapping with no gravity, and
 //! the deepest overlap (also beyond the contact band) and centre of mass of a world; and the
 //! property tests' configuration from a fixed seed.
@@ -130,6 +130,30 @@ pub fn head_on_pair(
             .at(centre + axis * half)
             .moving(-axis * speed),
     ]
+}
+
+/// Head-on pairs of spheres of `radius` (see [`head_on_pair`]) on a lattice of `side` by
+/// `side` by `side` sites `spacing` apart from `origin`, along x, y and z in turn.
+pub fn head_on_lattice(
+    origin: DVec3,
+    side: u32,
+    spacing: f64,
+    radius: f64,
+    gap: f64,
+    speed: f64,
+) -> Vec<[SphereDesc; 2]> {
+    let axes = [DVec3::X, DVec3::Y, DVec3::Z];
+    let mut pairs = Vec::new();
+    for i in 0..side {
+        for j in 0..side {
+            for k in 0..side {
+                let at = DVec3::new(f64::from(i), f64::from(j), f64::from(k)) * spacing;
+                let axis = axes[(i + j + k) as usize % 3];
+                pairs.push(head_on_pair(origin + at, axis, radius, gap, speed));
+            }
+        }
+    }
+    pairs
 }
 
 /// Steps `pairs` (equal masses, elastic, head-on, no gravity) once by `dt` and checks that

@@ -19,8 +19,7 @@ const GAP: f64 = 0.004;
 const DT: f64 = 1.0 / 60.0;
 
 /// Head-on pairs around `origin` on a lattice 0.5 m apart filling a cube of side 3 m, 7 by 7
-/// by 7, along x, y and z in turn (dense enough for the squeezed block to hold them all: a
-/// group as sparse as one pair a cubic metre goes to the general tier, as before).
+/// by 7, along x, y and z in turn (dense enough for the squeezed block to hold them all).
 fn group(origin: DVec3) -> Vec<[SphereDesc; 2]> {
     head_on_lattice(origin, 7, 0.5, RADIUS, GAP, SPEED)
 }

@@ -1,4 +1,4 @@
-//! Regression (README, "A ball pit"): spheres dropped into a box of fixed walls never came to
+//! Regression (docs/ball_pit.md): spheres dropped into a box of fixed walls never came to
 //! rest. The resting solve counted a pair as pressed only by the bodies' own accelerations
 //! along its normal, so the contacts with the walls and the sideways ones between neighbours
 //! (nothing of a sphere's own weight presses them; the bed's weight does, through the

@@ -1,4 +1,4 @@
-//! Regression (README, "Piles of very different densities"): in a pit of
+//! Regression (docs/ball_pit.md, "Piles of very different densities"): in a pit of
 //! spheres whose densities span four orders of magnitude, heavy spheres sank through light
 //! ones, all the way (a pit of 50 ended with two spheres 99.9 mm into each other, their
 //! diameter 100 mm). The resting solve's Gauss–Seidel sweeps carry a load through a light

@@ -21,6 +21,8 @@ pub struct Measurement {
     pub steps: u32,
     /// Wall seconds spent stepping.
     pub seconds: f64,
+    /// Wall seconds of the slowest timed step: the longest a game's frame would wait.
+    pub slowest: f64,
     /// Kinetic energy before the first step.
     pub kinetic_before: f64,
     /// Kinetic energy after the last.
@@ -118,12 +120,13 @@ pub fn measure_ours(
     let mut seconds = 0.0;
     let mut phases = profile.then(StepProfile::default);
     let mut per_step = Vec::with_capacity(steps as usize);
-    let mut kinetic_sum = 0.0;
+    let (mut kinetic_sum, mut slowest) = (0.0, 0.0f64);
     for _ in 0..steps {
         let started = Instant::now();
         let stats = *world.step(dt).expect("dt is valid");
         let elapsed = started.elapsed().as_secs_f64();
         seconds += elapsed;
+        slowest = slowest.max(elapsed);
         kinetic_sum += world.kinetic_energy();
         collisions += u64::from(stats.collisions);
         deferred += u64::from(stats.collisions_deferred);
@@ -145,6 +148,7 @@ pub fn measure_ours(
         bodies: world.len(),
         steps,
         seconds,
+        slowest,
         kinetic_before,
         kinetic_after: world.kinetic_energy(),
         kinetic_mean: kinetic_sum / f64::from(steps.max(1)),
@@ -203,17 +207,20 @@ pub fn measure_rapier(
     for _ in 0..settle.max(1) {
         world.step();
     }
-    let (mut seconds, mut kinetic_sum) = (0.0, 0.0);
+    let (mut seconds, mut kinetic_sum, mut slowest) = (0.0, 0.0, 0.0f64);
     for _ in 0..steps {
         let started = Instant::now();
         world.step();
-        seconds += started.elapsed().as_secs_f64();
+        let elapsed = started.elapsed().as_secs_f64();
+        seconds += elapsed;
+        slowest = slowest.max(elapsed);
         kinetic_sum += world.kinetic_energy();
     }
     Measurement {
         bodies: world.len(),
         steps,
         seconds,
+        slowest,
         kinetic_before,
         kinetic_after: world.kinetic_energy(),
         kinetic_mean: kinetic_sum / f64::from(steps.max(1)),

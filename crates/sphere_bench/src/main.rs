@@ -10,7 +10,9 @@
 //! each of `--steps` steps. With `--repeat N` each engine runs each scene N times, the
 //! engines taking turns (ours, rapier with CCD, rapier without, then again), and the fastest
 //! run of each is reported: on a shared machine the least disturbed run is the best estimate
-//! of the cost, and taking turns spreads any drift of the machine over all three.
+//! of the cost, and taking turns spreads any drift of the machine over all three. Beside the
+//! mean, each engine's slowest timed step in that run is given in milliseconds: a step is a
+//! game's frame, and a crowd landing at once can make a few steps cost many times the mean.
 //!
 //! With `--phases` our engine also times its step's phases (`World::set_profiling`), and a
 //! second table gives each phase's ns per sphere per step in the fastest run. With
@@ -175,14 +177,14 @@ fn main() {
             }
         );
         println!(
-            "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before (or mean) | rapier KE after/before (or mean) | overlap left (m): ours / CCD / no CCD | our collisions, tests /sphere/step |"
+            "| scene | N | ours (exact) | rapier CCD | rapier no CCD | vs CCD | vs no CCD | our KE after/before (or mean) | rapier KE after/before (or mean) | overlap left (m): ours / CCD / no CCD | our collisions, tests /sphere/step | slowest step (ms): ours / CCD / no CCD |"
         );
-        println!("|---|---|---|---|---|---|---|---|---|---|---|");
+        println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     } else {
         println!(
-            "| scene | N | ours (exact) | collisions/step | KE after/before (or mean) | overlap left | collisions, tests /sphere/step |"
+            "| scene | N | ours (exact) | collisions/step | KE after/before (or mean) | overlap left | collisions, tests /sphere/step | slowest step (ms) |"
         );
-        println!("|---|---|---|---|---|---|---|");
+        println!("|---|---|---|---|---|---|---|---|");
     }
     let mut phase_rows = Vec::new();
     let mut step_rows = Vec::new();
@@ -251,6 +253,9 @@ fn main() {
             };
             #[cfg(feature = "rapier")]
             let overlap = |m: &Measurement| format!("{:.1e}", m.max_overlap.unwrap_or(0.0));
+            // The slowest timed step, in milliseconds: a step is a game's frame, and the
+            // mean hides a crowd's landing in a few of them.
+            let slowest = |m: &Measurement| format!("{:.1}", m.slowest * 1e3);
             let work = |m: &Measurement| {
                 let (collisions, tests) = m.work_per_body_step();
                 format!("{collisions:.3}, {tests:.2}")
@@ -259,7 +264,7 @@ fn main() {
             {
                 let (ccd, plain) = (ccd.expect("one run"), plain.expect("one run"));
                 println!(
-                    "| {scene_name} | {n} | {} | {} | {} | {} | {} | {} | {} / {} | {} / {} / {} | {} |",
+                    "| {scene_name} | {n} | {} | {} | {} | {} | {} | {} | {} / {} | {} / {} / {} | {} | {} / {} / {} |",
                     cell(&ours),
                     cell(&ccd),
                     cell(&plain),
@@ -272,16 +277,20 @@ fn main() {
                     overlap(&ccd),
                     overlap(&plain),
                     work(&ours),
+                    slowest(&ours),
+                    slowest(&ccd),
+                    slowest(&plain),
                 );
             }
             if !rapier {
                 println!(
-                    "| {scene_name} | {n} | {} | {:.0} | {} | {:.2e} | {} |",
+                    "| {scene_name} | {n} | {} | {:.0} | {} | {:.2e} | {} | {} |",
                     cell(&ours),
                     ours.collisions as f64 / f64::from(options.steps),
                     ke(&ours),
                     ours.max_overlap.unwrap_or(0.0),
                     work(&ours),
+                    slowest(&ours),
                 );
             }
             let _ = std::io::stdout().flush();

@@ -52,7 +52,8 @@ pub struct StepStats {
     /// of them dynamic, at the end of the step; 0 if none overlap.
     pub max_overlap: f64,
     /// Spheres moved apart by their positions at the end of the step, from overlaps left
-    /// with nothing accelerating (no gravity, no applied force): see
+    /// with nothing accelerating (no gravity, no applied force), or from pairs with a sphere
+    /// on a string left more than 2% of a radius deep: see
     /// [`World::step`](crate::World::step). Summed over the step's substeps.
     pub separated: u32,
 }

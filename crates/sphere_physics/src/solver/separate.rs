@@ -10,12 +10,16 @@
 //! moved, or on a string, which holds it within its length), and no velocity changes, so
 //! momentum and kinetic energy are kept exactly. Spheres on strings in such a world are
 //! pressed together by their swings, which curve into each other; moving them apart here is
-//! what keeps them from sinking into each other step after step. Part of [`Solver`]: these
-//! are its methods.
+//! what keeps them from sinking into each other step after step. Under gravity too, where
+//! a sphere on a string pressed out along it by a heavier one is whipped round its anchor
+//! and its swing curves back into the heavier one between impacts (solved on the swing's
+//! tangent, each leaves the pair parting): the resting solve undoes overlaps only between
+//! resting contacts, so such pairs deeper than [`STRUNG_OVERLAP`] of the smaller radius are
+//! moved back to that depth here. Part of [`Solver`]: these are its methods.
 
 use glam::DVec3;
 
-use super::{MAX_CORRECTION, Solver, StepContext, Strung, bit, contact_band};
+use super::{MAX_CORRECTION, STRUNG_OVERLAP, Solver, StepContext, Strung, bit, contact_band};
 use crate::Body;
 use crate::broad_phase::Aabb;
 
@@ -29,8 +33,10 @@ const SEPARATION_SWEEPS: u32 = 32;
 
 impl Solver {
     /// Moves apart the pairs that end the step overlapping by more than their contact band,
-    /// when nothing accelerates (call after the write-back, with the bodies' final positions).
-    /// Each pair is moved to touching, its bodies in proportion to their inverse masses; a body
+    /// when nothing accelerates, and under an acceleration those with a sphere on a string
+    /// by more than [`STRUNG_OVERLAP`] of the smaller radius (see
+    /// [`Solver::separation_allowance`]; call after the write-back, with the bodies' final
+    /// positions). Each pair is moved to touching (to that depth, under an acceleration), its bodies in proportion to their inverse masses; a body
     /// moves at most [`MAX_CORRECTION`] of its radius in a step, as a push under gravity does,
     /// so a sphere placed deep inside others comes out over a few steps and one caught between
     /// fixed spheres cannot be flung (the cap is a substep's, and apart from the pushes of a
@@ -62,10 +68,13 @@ impl Solver {
         for t in 0..self.tested.len() {
             let (i, j) = self.tested[t];
             let (i, j) = (i as usize, j as usize);
+            let Some((allowed, _)) = self.separation_allowance(i, j, ctx) else {
+                continue;
+            };
             let (a, b) = (&self.segments[i], &self.segments[j]);
             let reach = a.radius() + b.radius();
             let distance = (self.final_position(j, dt) - self.final_position(i, dt)).length();
-            if reach - distance > contact_band(a, b, ctx.settings) {
+            if reach - distance > allowed {
                 self.may_separate(i, dt);
                 self.may_separate(j, dt);
             }
@@ -125,18 +134,21 @@ impl Solver {
                 let (i, j) = self.separate_pairs[p];
                 let (i, j) = (i as usize, j as usize);
                 let (wi, wj) = (weight(self, i), weight(self, j));
+                let Some((allowed, kept)) = self.separation_allowance(i, j, ctx) else {
+                    continue;
+                };
                 let (a, b) = (&self.segments[i], &self.segments[j]);
                 let reach = a.radius() + b.radius();
-                let band = contact_band(a, b, ctx.settings);
                 let (pi, pj) = (at(self, i), at(self, j));
                 let apart = pj - pi;
                 let distance = apart.length();
                 let overlap = reach - distance;
                 // The shares, from the weights over the larger (their sum can overflow).
                 let larger = wi.max(wj);
-                if overlap <= band || larger == 0.0 {
+                if overlap <= allowed || larger == 0.0 {
                     continue;
                 }
+                let overlap = overlap - kept;
                 let (ri, rj) = (wi / larger, wj / larger);
                 let normal = if distance > 0.0 {
                     apart / distance
@@ -222,6 +234,29 @@ impl Solver {
 }
 
 impl Solver {
+    /// How deep pair `(i, j)` may end the step before the separation moves it, and how deep
+    /// it leaves it: with nothing accelerating, its contact band, and moved to touching;
+    /// under an acceleration, [`STRUNG_OVERLAP`] of the smaller radius (or the band if
+    /// larger) for a pair with a sphere on a string, and moved back to that depth; `None`
+    /// (never moved) for any other pair, whose overlaps the resting solve undoes.
+    fn separation_allowance(
+        &self,
+        i: usize,
+        j: usize,
+        ctx: &StepContext<'_>,
+    ) -> Option<(f64, f64)> {
+        let (a, b) = (&self.segments[i], &self.segments[j]);
+        let band = contact_band(a, b, ctx.settings);
+        if self.nothing_accelerates {
+            Some((band, 0.0))
+        } else if self.strung(i).is_some() || self.strung(j).is_some() {
+            let allowed = band.max(STRUNG_OVERLAP * a.radius().min(b.radius()));
+            Some((allowed, allowed))
+        } else {
+            None
+        }
+    }
+
     /// How far segment `k` may be moved apart from others in a step: [`MAX_CORRECTION`] of
     /// its radius, or 0 for a fixed sphere.
     fn separation_cap(&self, k: usize) -> f64 {

@@ -424,13 +424,14 @@ impl World {
     /// they overlap) are moved apart by their positions: each pair to touching, its spheres in
     /// proportion to their inverse masses (so momentum and kinetic energy are kept exactly, and
     /// the centre of mass too but for moves away from a fixed sphere, which is not moved, or
-    /// one on a string, which moves only within its string's length), each sphere at most a tenth of its radius a step (a substep, with
-    /// substeps): a crowd placed a radius deep comes apart over a few dozen steps, and a sphere
-    /// deep in a bigger one creeps out. Under an acceleration, a pair with a sphere on a
-    /// string that ends the step more than 2% of the smaller radius into each other is moved
-    /// back to that depth the same way: a string's swing curving into a sphere that presses
-    /// its sphere out along it sinks the pair deeper between impacts, which the resting solve
-    /// does not see. [`StepStats::separated`] counts the spheres moved.
+    /// one on a string, which moves only within its string's length, and in a pair with one on
+    /// a string the other takes what the first cannot), each sphere at most a tenth of its
+    /// radius a step (a substep, with substeps): a crowd placed a radius deep comes apart over
+    /// a few dozen steps, and a sphere deep in a bigger one creeps out. Under an acceleration,
+    /// a pair with a sphere on a string that ends the step more than 2% of the smaller radius
+    /// into each other is moved back to that depth the same way: a string's swing curving into
+    /// a sphere that presses its sphere out along it sinks the pair deeper between impacts,
+    /// which the resting solve does not see. [`StepStats::separated`] counts the spheres moved.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
         if !(dt.is_normal() && dt > 0.0) {
             return Err(WorldError::InvalidTimeStep(dt));

@@ -49,7 +49,9 @@ impl Solver {
     /// its length: a move that would take it past it puts it on the string's sphere instead
     /// (so a taut string's sphere moves along its swing), and one its string holds against
     /// the move (see [`Solver::held_by_string`]) is not moved: the other sphere of the pair
-    /// takes all of it. Before, spheres on strings were not
+    /// takes all of it. In a pair with a sphere on a string (whose string holds it, so the
+    /// pair's centre of mass is not kept anyway), what one body's cap leaves undone the other
+    /// takes, within its own cap. Before, spheres on strings were not
     /// moved, and two of them pressed together by their swings sank 2 cm into each other
     /// (`regression_strung_spheres_pressed_zero_g`). Two spheres at the same point part along x.
     /// Returns how many bodies moved.
@@ -182,27 +184,49 @@ impl Solver {
                     -normal * (ri / (ri + rj) * overlap),
                     normal * (rj / (ri + rj) * overlap),
                 );
-                // One scale for both, so the pair's centre of mass stays, and each body's move
-                // in the step stays within its cap (a move back towards where it was is free).
-                let mut scale = 1.0f64;
-                for (k, m) in [(i, move_i), (j, move_j)] {
-                    if bit(&self.separate_bits, k) {
-                        let cap = self.separation_cap(k);
-                        // Not `min`, which would drop a NaN: a NaN scale means no move.
-                        let within = within_cap(self.separate_moves[k], m, cap);
-                        if within.is_nan() || within < scale {
-                            scale = within;
-                        }
+                // How much of its move each body may take within its cap in the step (a move
+                // back towards where it was is free); 1 for a body that does not move.
+                let within = |solver: &Self, k: usize, m: DVec3| {
+                    if bit(&solver.separate_bits, k) {
+                        within_cap(solver.separate_moves[k], m, solver.separation_cap(k))
+                    } else {
+                        1.0
                     }
+                };
+                let (ci, cj) = (within(self, i, move_i), within(self, j, move_j));
+                // A NaN means no move.
+                if ci.is_nan() || cj.is_nan() {
+                    continue;
                 }
-                if scale.is_nan() || scale <= 0.0 {
+                let (move_i, move_j) =
+                    if (self.strung(i).is_some() || self.strung(j).is_some()) && ci.min(cj) < 1.0 {
+                        // A pair with a sphere on a string, whose string holds it anyway (the
+                        // pair's centre of mass is not kept): what one body's cap leaves undone,
+                        // the other takes, within its own. A sphere of 1.5 cm pressed out along
+                        // its string by one of 10 kg, 2 cm into it, moved its tenth of a radius
+                        // (1.5 mm) and the other its share by the masses, nothing.
+                        if ci <= cj {
+                            let rest = move_j - move_i * (1.0 - ci);
+                            (move_i * ci, rest * within(self, j, rest))
+                        } else {
+                            let rest = move_i - move_j * (1.0 - cj);
+                            (rest * within(self, i, rest), move_j * cj)
+                        }
+                    } else {
+                        // One scale for both, so the pair's centre of mass stays.
+                        let scale = ci.min(cj);
+                        (move_i * scale, move_j * scale)
+                    };
+                if !(move_i.is_finite() && move_j.is_finite())
+                    || (move_i == DVec3::ZERO && move_j == DVec3::ZERO)
+                {
                     continue;
                 }
                 for (k, m) in [(i, move_i), (j, move_j)] {
                     if !bit(&self.separate_bits, k) {
                         continue;
                     }
-                    let mut to = self.separate_at[k] + m * scale;
+                    let mut to = self.separate_at[k] + m;
                     if let Some(&Strung { tether, .. }) = self.strung(k) {
                         // Kept within its string's length. On it, the move loses its part
                         // outward along the string (none is left of a move straight out); a
@@ -212,7 +236,6 @@ impl Solver {
                         let distance = r.length();
                         if distance >= tether.length * (1.0 - 1e-9) && distance > 0.0 {
                             let outward = r / distance;
-                            let m = m * scale;
                             to = self.separate_at[k] + m - outward * m.dot(outward).max(0.0);
                         }
                         let r = to - tether.anchor;

@@ -95,8 +95,8 @@ const STRING_PIECES: f64 = 64.0;
 /// (see `Solver::separate`). A light sphere pressed out along its string by a heavier one
 /// is held on its swing's tangent at each impact, but its swing curves into the other sphere
 /// between impacts: a sphere of 0.2 kg on a string of 0.55 m, pressed by one of 47.5 kg and
-/// whipped round at 26 m/s, sank 1.5% of its radius deeper each step, 5.3% in all, and
-/// nothing undid it.
+/// whipped round at up to 23 m/s, sank 1.1% to 1.6% of its radius deeper each step, 5.3% in
+/// all, and nothing undid it.
 const STRUNG_OVERLAP: f64 = 0.02;
 
 /// A string's state for the step, for the few bodies that hang on one: kept out of [`Extra`]
@@ -2121,14 +2121,14 @@ impl Solver {
                     sa.radius().min(sb.radius()),
                     ctx,
                 );
-                // A pair on a taut string already parting at half its push is given none:
-                // its string's chord, bent from the velocities solved here, closes on the
-                // other again at this instant, and each solve's push, taken on the tangent
-                // and bent back, fell a little short of the last, so the pair struck again
-                // and again until the collision budget ran out (494 times at one instant in
-                // the scene of `regression_light_strung_sphere_whipped.rs`). It settles instead, its string bent sooner (see
-                // `Solver::bend_sooner_if_closing`), and an overlap left at the step's end is
-                // moved apart (see `Solver::separate`).
+                // A pair on a taut string already parting at half its push is given none: its
+                // string's chord, bent from the velocities solved here, closes on the other
+                // again at this instant, and each solve's push, taken on the tangent and bent
+                // back, fell a little short of the last, so the pair struck again and again
+                // until the collision budget ran out (494 times at one instant in the scene of
+                // `regression_light_strung_sphere_whipped.rs`). It settles instead, its string
+                // bent sooner (see `Solver::bend_sooner_if_closing`), and an overlap left at
+                // the step's end is moved apart (see `Solver::separate`).
                 let (la, lb) = (local(&self.local_index, e.a), local(&self.local_index, e.b));
                 let parting = (self.local_velocities[lb] - self.local_velocities[la]).dot(normal);
                 if (self.local_taut[la] || self.local_taut[lb]) && parting >= 0.5 * correction {

@@ -38,23 +38,23 @@ const HELD_WITHIN: f64 = 0.866_025_403_784_438_6;
 
 impl Solver {
     /// Moves apart the pairs that end the step overlapping by more than their contact band,
-    /// when nothing accelerates, and under an acceleration those with a sphere on a string
-    /// by more than [`STRUNG_OVERLAP`] of the smaller radius (see
+    /// when nothing accelerates, and under an acceleration those with a sphere on a string by
+    /// more than [`STRUNG_OVERLAP`] of the smaller radius (see
     /// [`Solver::separation_allowance`]; call after the write-back, with the bodies' final
-    /// positions). Each pair is moved to touching (to that depth, under an acceleration), its bodies in proportion to their inverse masses; a body
-    /// moves at most [`MAX_CORRECTION`] of its radius in a step, as a push under gravity does,
-    /// so a sphere placed deep inside others comes out over a few steps and one caught between
-    /// fixed spheres cannot be flung (the cap is a substep's, and apart from the pushes of a
-    /// step that falls back). Fixed spheres are not moved. A sphere on a string is kept within
-    /// its length: a move that would take it past it puts it on the string's sphere instead
-    /// (so a taut string's sphere moves along its swing), and one its string holds against
-    /// the move (see [`Solver::held_by_string`]) is not moved: the other sphere of the pair
-    /// takes all of it. In a pair with a sphere on a string (whose string holds it, so the
-    /// pair's centre of mass is not kept anyway), what one body's cap leaves undone the other
-    /// takes, within its own cap. Before, spheres on strings were not
-    /// moved, and two of them pressed together by their swings sank 2 cm into each other
-    /// (`regression_strung_spheres_pressed_zero_g`). Two spheres at the same point part along x.
-    /// Returns how many bodies moved.
+    /// positions). Each pair is moved to touching (to that depth, under an acceleration), its
+    /// bodies in proportion to their inverse masses; a body moves at most [`MAX_CORRECTION`] of
+    /// its radius in a step, as a push under gravity does, so a sphere placed deep inside
+    /// others comes out over a few steps and one caught between fixed spheres cannot be flung
+    /// (the cap is a substep's, and apart from the pushes of a step that falls back). Fixed
+    /// spheres are not moved. A sphere on a string is kept within its length: a move that would
+    /// take it past it puts it on the string's sphere instead (so a taut string's sphere moves
+    /// along its swing), and one its string holds against the move (see
+    /// [`Solver::held_by_string`]) is not moved: the other sphere of the pair takes all of it.
+    /// In a pair with a sphere on a string (whose string holds it, so the pair's centre of mass
+    /// is not kept anyway), what one body's cap leaves undone the other takes, within its own
+    /// cap. Before, spheres on strings were not moved, and two of them pressed together by
+    /// their swings sank 2 cm into each other (`regression_strung_spheres_pressed_zero_g`). Two
+    /// spheres at the same point part along x. Returns how many bodies moved.
     ///
     /// The pairs come from those the step tested (a superset of those that can end it
     /// overlapping) and from the broad phase, asked for every pair within reach of a body that

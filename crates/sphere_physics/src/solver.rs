@@ -2102,6 +2102,7 @@ impl Solver {
             }
             let normal = d / distance;
             let (a, b) = (e.a as usize, e.b as usize);
+            let (la, lb) = (local(&self.local_index, e.a), local(&self.local_index, e.b));
             let (mut restitution, resting) = self.restitution(a, b, normal, settings);
             if self.inelastic {
                 restitution = 0.0;
@@ -2129,7 +2130,6 @@ impl Solver {
                 // `regression_light_strung_sphere_whipped.rs`). It settles instead, its string
                 // bent sooner (see `Solver::bend_sooner_if_closing`), and an overlap left at
                 // the step's end is moved apart (see `Solver::separate`).
-                let (la, lb) = (local(&self.local_index, e.a), local(&self.local_index, e.b));
                 let parting = (self.local_velocities[lb] - self.local_velocities[la]).dot(normal);
                 if (self.local_taut[la] || self.local_taut[lb]) && parting >= 0.5 * correction {
                     0.0
@@ -2141,8 +2141,8 @@ impl Solver {
             };
             self.local_resting.push(resting);
             self.local_contacts.push(GroupContact {
-                a: local(&self.local_index, e.a),
-                b: local(&self.local_index, e.b),
+                a: la,
+                b: lb,
                 normal,
                 restitution,
                 bias,

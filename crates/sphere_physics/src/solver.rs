@@ -408,6 +408,9 @@ pub(crate) struct Solver {
     /// their list), each one's position as moved so far and its move (valid where its bit is
     /// set), and the pairs within reach of them.
     separate_bits: Vec<u64>,
+    /// One bit per segment a move of this separation has taken with its pair's centre of mass
+    /// not kept (against a fixed sphere, a string, or a cap the other body made up for).
+    separate_unkept: Vec<u64>,
     separating: Vec<u32>,
     separate_at: Vec<DVec3>,
     separate_moves: Vec<DVec3>,

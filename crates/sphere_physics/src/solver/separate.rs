@@ -16,7 +16,8 @@
 //! the pair parting): the resting solve undoes overlaps only between resting contacts, so such
 //! pairs deeper than [`STRUNG_OVERLAP`] of the smaller radius are moved back to that depth
 //! here, and any pair such a move takes deeper than the step left it is moved back to where the
-//! step left it. Part of [`Solver`]: these are its methods.
+//! step left it (with nothing accelerating, any pair a move that kept no centre of mass did).
+//! Part of [`Solver`]: these are its methods.
 
 use glam::DVec3;
 
@@ -53,11 +54,14 @@ impl Solver {
     /// [`Solver::held_by_string`]) is not moved: the other sphere of the pair takes all of it.
     /// In a pair with a sphere on a string (whose string holds it, so the pair's centre of mass
     /// is not kept anyway), what one body's cap leaves undone the other takes, within its own
-    /// cap; so too, under an acceleration, in a pair without one that such a move took deeper
-    /// than the step left it, which is moved back to that depth. Before, spheres on strings
-    /// were not moved, and two of them pressed together by their swings sank 2 cm into each
-    /// other (`regression_strung_spheres_pressed_zero_g`). Two spheres at the same point part
-    /// along x. Returns how many bodies moved.
+    /// cap. A pair without a string that the separation's moves take deeper than the step left
+    /// it (under an acceleration any; with nothing accelerating, one pushed in by a move that
+    /// kept no centre of mass: against a fixed sphere, a string, or a cap made up for) is
+    /// carried: moved back to that depth, the sphere pushed as far as the larger cap of the
+    /// two, what one body's cap leaves undone the other taking. Before, spheres on strings were
+    /// not moved, and two of them pressed together by their swings sank 2 cm into each other
+    /// (`regression_strung_spheres_pressed_zero_g`). Two spheres at the same point part along
+    /// x. Returns how many bodies moved.
     ///
     /// The pairs come from those the step tested (a superset of those that can end it
     /// overlapping) and from the broad phase, asked for every pair within reach of a body that
@@ -71,6 +75,8 @@ impl Solver {
         let n = self.segments.len();
         self.separate_bits.clear();
         self.separate_bits.resize(n.div_ceil(64), 0);
+        self.separate_unkept.clear();
+        self.separate_unkept.resize(n.div_ceil(64), 0);
         self.separating.clear();
         self.separate_pairs.clear();
         if self.separate_at.len() < n {
@@ -176,7 +182,26 @@ impl Solver {
                 if larger == 0.0 {
                     continue;
                 }
-                let overlap = overlap - kept;
+                // A pair without a string that this separation's moves took deeper than the
+                // step left it (under an acceleration, any such pair it moves; with nothing
+                // accelerating, one whose sphere a move that kept no centre of mass pushed in)
+                // is carried: moved back to where the step left it (or its band), the sphere
+                // pushed as far as the larger cap of the two, what one's cap leaves undone the
+                // other taking. Its own overlap, if any, is moved apart as any pair's is.
+                let unkept = |solver: &Self, k: usize| bit(&solver.separate_unkept, k);
+                let strung = self.strung(i).is_some() || self.strung(j).is_some();
+                let carried_to = if strung {
+                    None
+                } else if !self.nothing_accelerates {
+                    Some(kept)
+                } else if unkept(self, i) || unkept(self, j) {
+                    let left = self.step_left(i, j, dt).max(allowed);
+                    (overlap > left).then_some(left)
+                } else {
+                    None
+                };
+                let carried = carried_to.is_some();
+                let overlap = overlap - carried_to.unwrap_or(kept);
                 let (ri, rj) = (wi / larger, wj / larger);
                 // The shares first: an inverse mass times an overlap can overflow.
                 let (move_i, move_j) = (
@@ -185,9 +210,15 @@ impl Solver {
                 );
                 // How much of its move each body may take within its cap in the step (a move
                 // back towards where it was is free); 1 for a body that does not move.
+                let pair_cap = self.separation_cap(i).max(self.separation_cap(j));
                 let within = |solver: &Self, k: usize, m: DVec3| {
                     if bit(&solver.separate_bits, k) {
-                        within_cap(solver.separate_moves[k], m, solver.separation_cap(k))
+                        let cap = if carried {
+                            pair_cap
+                        } else {
+                            solver.separation_cap(k)
+                        };
+                        within_cap(solver.separate_moves[k], m, cap)
                     } else {
                         1.0
                     }
@@ -197,17 +228,18 @@ impl Solver {
                 if ci.is_nan() || cj.is_nan() {
                     continue;
                 }
-                let (move_i, move_j) = if (!self.nothing_accelerates
-                    || self.strung(i).is_some()
-                    || self.strung(j).is_some())
-                    && ci.min(cj) < 1.0
-                {
+                let make_up = carried || (strung && ci.min(cj) < 1.0);
+                let (move_i, move_j) = if make_up {
                     // A pair with a sphere on a string, whose string holds it anyway (the
-                    // pair's centre of mass is not kept), or any pair under an acceleration
-                    // (moved only by the moves of a strung pair): what one body's cap leaves
-                    // undone, the other takes, within its own. A sphere of 1.5 cm pressed out
-                    // along its string by one of 10 kg, 2 cm into it, moved its tenth of a
-                    // radius (1.5 mm) and the other its share by the masses, nothing.
+                    // pair's centre of mass is not kept), or one carried: what one body's cap
+                    // leaves undone, the other takes, within its own. A sphere of 1.5 cm
+                    // pressed out along its string by one of 10 kg, 2 cm into it, moved its
+                    // tenth of a radius (1.5 mm) and the other its share by the masses,
+                    // nothing. With no gravity a free sphere of 128 kg, moved out of a
+                    // kinematic one (which gives no way) into a free one of 0.8 mg, which its
+                    // own cap let move 1 mm and the pair's centre of mass kept the large one
+                    // from taking the rest, was left 11.5 of the small one's radii deep
+                    // (`sphere-fuzz --strings fast`, seed 48 581).
                     if ci <= cj {
                         let rest = move_j - move_i * (1.0 - ci);
                         (move_i * ci, rest * within(self, j, rest))
@@ -225,6 +257,7 @@ impl Solver {
                 {
                     continue;
                 }
+                let com_lost = make_up || wi == 0.0 || wj == 0.0;
                 for (k, m) in [(i, move_i), (j, move_j)] {
                     if !bit(&self.separate_bits, k) {
                         continue;
@@ -252,6 +285,9 @@ impl Solver {
                         self.separate_at[k] = to;
                         self.separate_moves[k] += step;
                         moved = true;
+                        if com_lost || self.strung(k).is_some() {
+                            self.separate_unkept[k / 64] |= 1 << (k % 64);
+                        }
                     }
                 }
             }
@@ -300,12 +336,15 @@ impl Solver {
             let allowed = band.max(STRUNG_OVERLAP * a.radius().min(b.radius()));
             (allowed, allowed)
         } else {
-            let reach = a.radius() + b.radius();
-            let before =
-                reach - (self.final_position(j, ctx.dt) - self.final_position(i, ctx.dt)).length();
-            let allowed = band.max(before);
+            let allowed = band.max(self.step_left(i, j, ctx.dt));
             (allowed, allowed)
         }
+    }
+
+    /// How deep pair `(i, j)` ended the step, before the separation (negative if apart).
+    fn step_left(&self, i: usize, j: usize, dt: f64) -> f64 {
+        let reach = self.segments[i].radius() + self.segments[j].radius();
+        reach - (self.final_position(j, dt) - self.final_position(i, dt)).length()
     }
 
     /// Whether segment `k` (moving in this separation) is held by its string against a move

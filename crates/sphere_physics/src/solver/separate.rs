@@ -54,14 +54,15 @@ impl Solver {
     /// [`Solver::held_by_string`]) is not moved: the other sphere of the pair takes all of it.
     /// In a pair with a sphere on a string (whose string holds it, so the pair's centre of mass
     /// is not kept anyway), what one body's cap leaves undone the other takes, within its own
-    /// cap. A pair without a string that the separation's moves take deeper than the step left
-    /// it (under an acceleration any; with nothing accelerating, one pushed in by a move that
-    /// kept no centre of mass: against a fixed sphere, a string, or a cap made up for) is
-    /// carried: moved back to that depth, the sphere pushed as far as the larger cap of the
-    /// two, what one body's cap leaves undone the other taking. Before, spheres on strings were
-    /// not moved, and two of them pressed together by their swings sank 2 cm into each other
-    /// (`regression_strung_spheres_pressed_zero_g`). Two spheres at the same point part along
-    /// x. Returns how many bodies moved.
+    /// cap, and a body's cap is as far as it drifted in the step if that is farther (see
+    /// [`Solver::strung_pair_cap`]). A pair without a string that the separation's moves take
+    /// deeper than the step left it (under an acceleration any; with nothing accelerating, one
+    /// pushed in by a move that kept no centre of mass: against a fixed sphere, a string, or a
+    /// cap made up for) is carried: moved back to that depth, the sphere pushed as far as the
+    /// larger cap of the two, what one body's cap leaves undone the other taking. Before,
+    /// spheres on strings were not moved, and two of them pressed together by their swings sank
+    /// 2 cm into each other (`regression_strung_spheres_pressed_zero_g`). Two spheres at the
+    /// same point part along x. Returns how many bodies moved.
     ///
     /// The pairs come from those the step tested (a superset of those that can end it
     /// overlapping) and from the broad phase, asked for every pair within reach of a body that
@@ -116,8 +117,8 @@ impl Solver {
                 }
                 let reach = self.segments[k].radius()
                     + self.segments[m].radius()
-                    + self.separation_cap(k)
-                    + self.separation_cap(m);
+                    + self.reach_cap(k, dt)
+                    + self.reach_cap(m, dt);
                 if (self.final_position(m, dt) - self.separate_at[k]).length() >= reach {
                     continue;
                 }
@@ -215,6 +216,8 @@ impl Solver {
                     if bit(&solver.separate_bits, k) {
                         let cap = if carried {
                             pair_cap
+                        } else if strung {
+                            solver.strung_pair_cap(k, dt)
                         } else {
                             solver.separation_cap(k)
                         };
@@ -376,8 +379,33 @@ impl Solver {
         }
     }
 
+    /// How far segment `k` may be moved apart from the other sphere of a pair with a sphere on
+    /// a string in a step: its cap, or as far as it drifted in the step if farther (such a move
+    /// is no larger than what the step itself did to it). A sphere that swallows a small one's
+    /// anchor at tens of m/s and presses it out along its string ended steps deeper in it than
+    /// its cap could undo: a sphere of 11 kg at 36 m/s, 1.3 of the small one's radii, and one
+    /// of 294 kg at 41 m/s, 1.25 (`sphere-fuzz --strings fast`, seeds 26 555 and 33 838).
+    fn strung_pair_cap(&self, k: usize, dt: f64) -> f64 {
+        let cap = self.separation_cap(k);
+        if cap == 0.0 {
+            0.0
+        } else {
+            cap.max(self.segments[k].velocity.length() * dt)
+        }
+    }
+
+    /// How far segment `k` may be moved in this step's separation by any pair: its cap, and
+    /// in a world with strings as far as [`Solver::strung_pair_cap`] lets it.
+    fn reach_cap(&self, k: usize, dt: f64) -> f64 {
+        if self.strings {
+            self.strung_pair_cap(k, dt)
+        } else {
+            self.separation_cap(k)
+        }
+    }
+
     /// Lets segment `k` move in this step's separation, unless it may not (fixed) or already
-    /// does: its box is grown by its cap in the broad phase, and its
+    /// does: its box is grown by its reach (see [`Solver::reach_cap`]) in the broad phase, and its
     /// neighbours are to be sought.
     fn may_separate(&mut self, k: usize, dt: f64) {
         if bit(&self.separate_bits, k) || self.separation_cap(k) == 0.0 {
@@ -388,7 +416,7 @@ impl Solver {
         let at = self.final_position(k, dt);
         self.separate_at[k] = at;
         self.separate_moves[k] = DVec3::ZERO;
-        let grow = DVec3::splat(self.segments[k].radius() + self.separation_cap(k));
+        let grow = DVec3::splat(self.segments[k].radius() + self.reach_cap(k, dt));
         self.boxes[k] = Aabb {
             lo: at - grow,
             hi: at + grow,

@@ -87,6 +87,11 @@ impl Solver {
         for t in 0..self.tested.len() {
             let (i, j) = self.tested[t];
             let (i, j) = (i as usize, j as usize);
+            // Under an acceleration only a pair with a sphere on a string starts a separation
+            // (any other is allowed as deep as the step left it).
+            if !self.nothing_accelerates && self.strung(i).is_none() && self.strung(j).is_none() {
+                continue;
+            }
             let (allowed, _) = self.separation_allowance(i, j, ctx);
             let (a, b) = (&self.segments[i], &self.segments[j]);
             let reach = a.radius() + b.radius();
@@ -405,8 +410,8 @@ impl Solver {
     }
 
     /// Lets segment `k` move in this step's separation, unless it may not (fixed) or already
-    /// does: its box is grown by its reach (see [`Solver::reach_cap`]) in the broad phase, and its
-    /// neighbours are to be sought.
+    /// does: its box is grown by its reach (see [`Solver::reach_cap`]) in the broad phase, and
+    /// its neighbours are to be sought.
     fn may_separate(&mut self, k: usize, dt: f64) {
         if bit(&self.separate_bits, k) || self.separation_cap(k) == 0.0 {
             return;

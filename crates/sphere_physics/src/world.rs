@@ -431,7 +431,11 @@ impl World {
     /// a pair with a sphere on a string that ends the step more than 2% of the smaller radius
     /// into each other is moved back to that depth the same way: a string's swing curving into
     /// a sphere that presses its sphere out along it sinks the pair deeper between impacts,
-    /// which the resting solve does not see. [`StepStats::separated`] counts the spheres moved.
+    /// which the resting solve does not see; in such a pair a sphere may be moved as far as it
+    /// drifted in the step, if farther than a tenth of its radius. A sphere these moves push
+    /// into another is carried along: no pair is left deeper by them than the step left it
+    /// (within the caps), and where nothing accelerates the pair's centre of mass is then not
+    /// kept. [`StepStats::separated`] counts the spheres moved.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
         if !(dt.is_normal() && dt > 0.0) {
             return Err(WorldError::InvalidTimeStep(dt));

@@ -105,23 +105,29 @@ const STRUNG_OVERLAP: f64 = 0.02;
 
 /// A sphere of radius `R` whose centre comes within `R + r − ℓ` of the anchor of a sphere of
 /// radius `r` on a string of length `ℓ` leaves that sphere no place on its string outside it.
-/// Once the large sphere's centre is within this fraction of `r` of that, an impact between
-/// the two with the string taut holds the large sphere off the anchor as a strut would (see
-/// [`Solver::add_struts`]): as near as the strung sphere, on a chord of its swing, may lie
-/// inside its string's length ([`STRING_SAG`]). Each impact pushes the small sphere a little
-/// off the line through the anchor, round its swing, where it is struck again: without the
-/// strut it was whipped round faster and faster while the large sphere crept on towards the
-/// anchor, and the string's catches took the large sphere's energy. A sphere of 1.4 kg
-/// wedged against a fixed one sank 10.6% of a radius into one of 8 mg on a string of 6.8 cm
+/// Once the large sphere's centre is within this fraction of `r` of that, an impact between the
+/// two with the string taut holds the large sphere off the anchor as a strut would (see
+/// [`Solver::add_struts`]), and so does the large sphere's reaching that distance between
+/// impacts (see [`Solver::test_struts`]): as near as the strung sphere, on a chord of its
+/// swing, may lie inside its string's length ([`STRING_SAG`]). Each impact pushes the small
+/// sphere a little off the line through the anchor, round its swing, where it is struck again:
+/// without the strut it was whipped round faster and faster while the large sphere crept on
+/// towards the anchor, and the string's catches took the large sphere's energy. A sphere of 1.4
+/// kg wedged against a fixed one sank 10.6% of a radius into one of 8 mg on a string of 6.8 cm
 /// (`sphere-fuzz --strings fast`, seed 81 682), and a sphere of 1.4 kg driven at 3 m/s,
 /// elastic, towards the anchor of one of 10 mg whose string lay 20° off its path rebounded at
 /// 2.62 m/s after 128 collisions, where the strut sends it back at 3 m/s after 3
-/// (`regression_heavy_sphere_squeezes_a_strung_one.rs`). Margins of 2% and 5% did as well
-/// on the fuzz, but with 2% the whipped sphere of `regression_light_strung_sphere_whipped.rs`
-/// took another path, sliding along the heavy one in hundreds of impacts a step until the
-/// collision budget ran out; with none the strut did nothing, and holding the large sphere
-/// off as soon as the small one's room was within 30° of the line stopped it 7 mm (2% of its
-/// radius) short.
+/// (`regression_heavy_sphere_squeezes_a_strung_one.rs`). Margins of 2% and 5% did as well on
+/// the fuzz, but with 2% the whipped sphere of `regression_light_strung_sphere_whipped.rs` took
+/// another path, sliding along the heavy one in hundreds of impacts a step until the collision
+/// budget ran out; with none the strut did nothing, and holding the large sphere off as soon as
+/// the small one's room was within 30° of the line stopped it 7 mm (2% of its radius) short.
+/// Met only at impacts, a large sphere at 100 m/s crossed the margin (0.14 mm there) between
+/// two (seed 21 628, 3.2 of the small one's radii deep within the step; 2.3 with the strut's
+/// own impacts). Left: driven at 30 m/s the large sphere above rebounds at 35% of its speed
+/// with the string 30° off its path and 15% at 90°: the light sphere, struck before the strut
+/// engages, is whipped round at hundreds of m/s (where the energy goes was not traced; the
+/// likeliest sink is its string's chords, a 64th of a step each, turning up to a radian).
 const STRUT_MARGIN: f64 = STRING_SAG;
 
 /// A string's state for the step, for the few bodies that hang on one: kept out of [`Extra`]
@@ -2200,7 +2206,7 @@ impl Solver {
             }
         }
         if self.strings {
-            self.add_struts(events);
+            self.add_struts(events, settings);
         }
         // As for a single impact (see `resolve_event`): the impacts answer the speeds at their
         // instant, which differ from the drifts' where the bodies' accelerations differ (a ball
@@ -2300,24 +2306,23 @@ impl Solver {
     /// Adds to a group's contacts (in [`Solver::local_contacts`], its bodies already local)
     /// a strut for each of `events` between a sphere on a taut string and a dynamic sphere
     /// within [`STRUT_MARGIN`] of leaving it no room: a contact that keeps the other sphere
-    /// from closing on the string's anchor, as a fixed body there (with the impact's
-    /// restitution). Where the strung sphere is on the line from the other's centre through
+    /// from closing on the string's anchor, as a fixed body there (see
+    /// [`Solver::strut_restitution`]). Where the strung sphere is on the line from the other's centre through
     /// the anchor, the strut is the impact and the string together; off it, it stands for
     /// the string's sphere closing round the strung one.
-    fn add_struts(&mut self, events: &[Event]) {
+    fn add_struts(&mut self, events: &[Event], settings: &Settings) {
         for event in events {
             let (la, lb) = (
                 self.local_index[event.a as usize] as usize,
                 self.local_index[event.b as usize] as usize,
             );
             // The impact's contact, among the events' (none for spheres at one point).
-            let Some(restitution) = self.local_contacts[..self.local_resting.len()]
+            if !self.local_contacts[..self.local_resting.len()]
                 .iter()
-                .find(|c| c.a == la && c.b == lb)
-                .map(|c| c.restitution)
-            else {
+                .any(|c| c.a == la && c.b == lb)
+            {
                 continue;
-            };
+            }
             for (k, m) in [(event.a, event.b), (event.b, event.a)] {
                 let (lk, lm) = (
                     self.local_index[k as usize] as usize,
@@ -2338,10 +2343,14 @@ impl Solver {
                 {
                     continue;
                 }
+                let normal = r / distance;
+                let closing = self.local_velocities[lm].dot(normal);
+                let restitution =
+                    self.strut_restitution(k as usize, m as usize, normal, closing, settings);
                 self.local_contacts.push(GroupContact {
                     a: lm,
                     b: self.local_inverse_masses.len(),
-                    normal: r / distance,
+                    normal,
                     restitution,
                     bias: 0.0,
                     string: false,
@@ -2470,6 +2479,9 @@ impl Solver {
         ctx: &StepContext<'_>,
         stats: &mut StepStats,
     ) {
+        if self.strings {
+            self.test_struts(i, j, t, ctx);
+        }
         let (si, sj) = (&self.segments[i], &self.segments[j]);
         match (si.is_fixed(), sj.is_fixed()) {
             (true, true) => return,
@@ -2568,9 +2580,134 @@ impl Solver {
         }
     }
 
+    /// Queues pair `(i, j)`'s strut impact (see [`Solver::add_struts`]), if one of them hangs
+    /// on a string and the other's drift takes its centre within [`STRUT_MARGIN`] of `R + r −
+    /// ℓ` from the string's anchor later in the step: an impact found at no contact between
+    /// the two, which the strut alone answers (see [`Solver::resolve_strut`]).
+    fn test_struts(&mut self, i: usize, j: usize, t: f64, ctx: &StepContext<'_>) {
+        for (k, m) in [(i, j), (j, i)] {
+            let Some(&Strung { tether, .. }) = self.strung(k) else {
+                continue;
+            };
+            let (sk, sm) = (&self.segments[k], &self.segments[m]);
+            if sm.is_fixed() {
+                continue;
+            }
+            let limit = sm.radius() + sk.radius() - tether.length;
+            if limit <= 0.0 {
+                continue;
+            }
+            let reach = limit + STRUT_MARGIN * sk.radius();
+            let d = sm.position_at(t) - tether.anchor;
+            let w = sm.velocity;
+            let (a, b, c) = (
+                w.length_squared(),
+                d.dot(w),
+                d.length_squared() - reach * reach,
+            );
+            // Already within (an impact between the two holds it off), or not closing.
+            if c <= 0.0 || b >= 0.0 {
+                continue;
+            }
+            let discriminant = b * b - a * c;
+            if discriminant < 0.0 {
+                continue;
+            }
+            // The smaller root, written without cancellation.
+            let toi = c / (-b + discriminant.sqrt());
+            if !(0.0..=ctx.dt - t).contains(&toi) {
+                continue;
+            }
+            let time = t + toi;
+            if time > self.queue_until {
+                continue;
+            }
+            self.queue.push(Event {
+                time,
+                a: i as u32,
+                b: j as u32,
+                version_a: self.versions[i],
+                version_b: self.versions[j],
+            });
+        }
+    }
+
+    /// The restitution of a strut holding segment `m` off the anchor of segment `k`'s string,
+    /// `m` closing on it at `closing` along `normal`: the pair's, or none if it closes no
+    /// faster than a resting contact (or the impact is solved inelastic). Not the impact's
+    /// own: the strung sphere, whipped round, may be parting from the other where the other
+    /// still closes on the anchor (then resting, restitution 0: a sphere driven at 30 m/s
+    /// into the squeeze rebounded at 0.59 m/s instead of 30).
+    fn strut_restitution(
+        &self,
+        k: usize,
+        m: usize,
+        normal: DVec3,
+        closing: f64,
+        settings: &Settings,
+    ) -> f64 {
+        let (em, ek) = (self.extra(m), self.extra(k));
+        if self.inelastic || closing <= self.resting_scale * em.acceleration.dot(normal).abs() {
+            0.0
+        } else {
+            settings
+                .restitution_combine
+                .combine(em.restitution, ek.restitution)
+        }
+    }
+
+    /// Answers `event` by a strut alone, if it is a strut's impact (see
+    /// [`Solver::test_struts`]): its two spheres apart, one within [`STRUT_MARGIN`] of `R + r −
+    /// ℓ` from the other's anchor and closing on it. That sphere's speed towards the anchor is
+    /// turned back, times the pair's restitution (none if it closes no faster than a resting
+    /// contact). Returns whether it was.
+    fn resolve_strut(&mut self, event: &Event, ctx: &StepContext<'_>) -> bool {
+        let (a, b) = (event.a as usize, event.b as usize);
+        let t = event.time;
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let (pa, pb) = (sa.position_at(t), sb.position_at(t));
+        let reach = sa.radius() + sb.radius();
+        if (pb - pa).length() <= reach + contact_band(sa, sb, ctx.settings) {
+            return false;
+        }
+        for (k, m, pm) in [(a, b, pb), (b, a, pa)] {
+            let Some(&Strung { tether, .. }) = self.strung(k) else {
+                continue;
+            };
+            let (sk, sm) = (&self.segments[k], &self.segments[m]);
+            if sm.is_fixed() {
+                continue;
+            }
+            let limit = sm.radius() + sk.radius() - tether.length;
+            let r = tether.anchor - pm;
+            let distance = r.length();
+            // (The time of impact puts it there to rounding.)
+            if limit <= 0.0
+                || distance == 0.0
+                || distance > (limit + STRUT_MARGIN * sk.radius()) * (1.0 + 1e-9)
+            {
+                continue;
+            }
+            let normal = r / distance;
+            let closing = sm.velocity.dot(normal);
+            if closing <= 0.0 {
+                continue;
+            }
+            let restitution = self.strut_restitution(k, m, normal, closing, ctx.settings);
+            let velocity = sm.velocity - normal * ((1.0 + restitution) * closing);
+            self.segments[m].advance_to(t);
+            self.set_velocity(m, velocity, t, ctx);
+            return true;
+        }
+        false
+    }
+
     fn resolve_event(&mut self, event: &Event, ctx: &StepContext<'_>, stats: &mut StepStats) {
         let (a, b) = (event.a as usize, event.b as usize);
         let t = event.time;
+        if self.strings && self.resolve_strut(event, ctx) {
+            return;
+        }
         if self.taut_at(a, t) || self.taut_at(b, t) {
             // A taut string takes part in the impact: solve it with the contact.
             self.resolve_group(std::slice::from_ref(event), t, ctx, stats);

@@ -124,10 +124,13 @@ const STRUNG_OVERLAP: f64 = 0.02;
 /// the small one's room was within 30° of the line stopped it 7 mm (2% of its radius) short.
 /// Met only at impacts, a large sphere at 100 m/s crossed the margin (0.14 mm there) between
 /// two (seed 21 628, 3.2 of the small one's radii deep within the step; 2.3 with the strut's
-/// own impacts). Left: driven at 30 m/s the large sphere above rebounds at 35% of its speed
-/// with the string 30° off its path and 15% at 90°: the light sphere, struck before the strut
-/// engages, is whipped round at hundreds of m/s (where the energy goes was not traced; the
-/// likeliest sink is its string's chords, a 64th of a step each, turning up to a radian).
+/// own impacts). Left: faster, the light sphere may be struck before the strut engages and
+/// whipped round at hundreds of m/s, and the large sphere loses speed (where the energy goes
+/// was not traced; the likeliest sink is the string's chords, a 64th of a step each, turning up
+/// to a radian): driven at 10 m/s, it rebounds at 70% of its speed with the string 120° off its
+/// path and 41% at 170° (at 99% or more from 0° to 90°), at 30 m/s at 35% with it 30° off and
+/// 84% to 91% at 45°, 120° and 150° (before the strut, at 10 m/s at 12% to 41% from 20° on, and
+/// at 30 m/s it kept moving forward at 20°, 45°, 90° and 170°).
 const STRUT_MARGIN: f64 = STRING_SAG;
 
 /// A string's state for the step, for the few bodies that hang on one: kept out of [`Extra`]

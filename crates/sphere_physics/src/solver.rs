@@ -87,11 +87,15 @@ const _: () = assert!(size_of::<Extra>() == 64, "an Extra is one cache line");
 /// and ended it 5.8% of its radius deep.
 const STRING_SAG: f64 = 0.01;
 
-/// A string's drift is bent again at most this many times a step (beyond its sphere's
-/// impacts): a piece lasts at least one this-many-th of the step. (With 16, a light sphere
-/// pressed out against its string by a heavy ball and whirled round at 122 m/s, 7.7 rad a
-/// step, re-struck the ball at every bend and ended a step 15% of its radius into it; 6.2%
-/// with 64.)
+/// A string's drift is bent again at most this many times a step (beyond its sphere's impacts):
+/// a piece lasts at least one this-many-th of the step. (With 16, a light sphere pressed out
+/// against its string by a heavy ball and whirled round at 122 m/s, 7.7 rad a step, re-struck
+/// the ball at every bend and ended a step 15% of its radius into it; 6.2% with 64.) A light
+/// sphere whipped round at hundreds of m/s on a short string turns up to a radian a piece, and
+/// each bend takes some of its energy: a heavy sphere squeezing one (the scene of
+/// `regression_heavy_sphere_squeezes_a_strung_one.rs`, driven at 10 and 30 m/s) rebounds at 35%
+/// to 91% of its speed at some angles with 64, and at its speed at every angle tried with 512;
+/// not kept, as the fuzz then spent its collision budget in more scenes (docs/robustness.md).
 const STRING_PIECES: f64 = 64.0;
 
 /// Under gravity or an applied force, how deep (a fraction of the smaller radius) a pair with
@@ -125,12 +129,12 @@ const STRUNG_OVERLAP: f64 = 0.02;
 /// Met only at impacts, a large sphere at 100 m/s crossed the margin (0.14 mm there) between
 /// two (seed 21 628, 3.2 of the small one's radii deep within the step; 2.3 with the strut's
 /// own impacts). Left: faster, the light sphere may be struck before the strut engages and
-/// whipped round at hundreds of m/s, and the large sphere loses speed (where the energy goes
-/// was not traced; the likeliest sink is the string's chords, a 64th of a step each, turning up
-/// to a radian): driven at 10 m/s, it rebounds at 70% of its speed with the string 120° off its
-/// path and 41% at 170° (at 99% or more from 0° to 90°), at 30 m/s at 35% with it 30° off and
-/// 84% to 91% at 45°, 120° and 150° (before the strut, at 10 m/s at 12% to 41% from 20° on, and
-/// at 30 m/s it kept moving forward at 20°, 45°, 90° and 170°).
+/// whipped round at hundreds of m/s, and the large sphere loses speed to the string's chords, a
+/// 64th of a step each, turning up to a radian (see [`STRING_PIECES`]): driven at 10 m/s, it
+/// rebounds at 70% of its speed with the string 120° off its path and 41% at 170° (at 99% or
+/// more from 0° to 90°), at 30 m/s at 35% with it 30° off and 84% to 91% at 45°, 120° and 150°
+/// (before the strut, at 10 m/s at 12% to 41% from 20° on, and at 30 m/s it kept moving forward
+/// at 20°, 45°, 90° and 170°).
 const STRUT_MARGIN: f64 = STRING_SAG;
 
 /// A string's state for the step, for the few bodies that hang on one: kept out of [`Extra`]

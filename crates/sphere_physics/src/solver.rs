@@ -2335,19 +2335,15 @@ impl Solver {
                     self.local_index[k as usize] as usize,
                     self.local_index[m as usize] as usize,
                 );
-                let Some(&Strung { tether, .. }) = self.strung(k as usize) else {
+                let Some((anchor, reach)) = self.strut(k as usize, m as usize) else {
                     continue;
                 };
-                if !self.local_taut[lk] || self.local_inverse_masses[lm] == 0.0 {
+                if !self.local_taut[lk] {
                     continue;
                 }
-                let (sk, sm) = (&self.segments[k as usize], &self.segments[m as usize]);
-                // How near the other's centre may come to the anchor.
-                let limit = sm.radius() + sk.radius() - tether.length;
-                let r = tether.anchor - sm.position;
+                let r = anchor - self.segments[m as usize].position;
                 let distance = r.length();
-                if limit <= 0.0 || distance == 0.0 || distance > limit + STRUT_MARGIN * sk.radius()
-                {
+                if distance == 0.0 || distance > reach {
                     continue;
                 }
                 let normal = r / distance;
@@ -2574,17 +2570,33 @@ impl Solver {
                     None => return,
                 }
             }
-            if time > self.queue_until {
-                return;
-            }
-            self.queue.push(Event {
-                time,
-                a: i as u32,
-                b: j as u32,
-                version_a: self.versions[i],
-                version_b: self.versions[j],
-            });
+            self.queue_pair(i, j, time);
         }
+    }
+
+    /// Queues an impact of pair `(i, j)` at `time`, unless it is past what the queue takes.
+    #[inline(always)]
+    fn queue_pair(&mut self, i: usize, j: usize, time: f64) {
+        if time > self.queue_until {
+            return;
+        }
+        self.queue.push(Event {
+            time,
+            a: i as u32,
+            b: j as u32,
+            version_a: self.versions[i],
+            version_b: self.versions[j],
+        });
+    }
+
+    /// Where segment `k`'s string is anchored, and how near segment `m`'s centre may come to
+    /// the anchor before a strut holds it off (`R + r − ℓ` and [`STRUT_MARGIN`]), if `k` hangs
+    /// on a string short enough for `m` to squeeze it there and `m` is dynamic.
+    fn strut(&self, k: usize, m: usize) -> Option<(DVec3, f64)> {
+        let &Strung { tether, .. } = self.strung(k)?;
+        let (sk, sm) = (&self.segments[k], &self.segments[m]);
+        let limit = sm.radius() + sk.radius() - tether.length;
+        (!sm.is_fixed() && limit > 0.0).then(|| (tether.anchor, limit + STRUT_MARGIN * sk.radius()))
     }
 
     /// Queues pair `(i, j)`'s strut impact (see [`Solver::add_struts`]), if one of them hangs
@@ -2593,19 +2605,11 @@ impl Solver {
     /// the two, which the strut alone answers (see [`Solver::resolve_strut`]).
     fn test_struts(&mut self, i: usize, j: usize, t: f64, ctx: &StepContext<'_>) {
         for (k, m) in [(i, j), (j, i)] {
-            let Some(&Strung { tether, .. }) = self.strung(k) else {
+            let Some((anchor, reach)) = self.strut(k, m) else {
                 continue;
             };
-            let (sk, sm) = (&self.segments[k], &self.segments[m]);
-            if sm.is_fixed() {
-                continue;
-            }
-            let limit = sm.radius() + sk.radius() - tether.length;
-            if limit <= 0.0 {
-                continue;
-            }
-            let reach = limit + STRUT_MARGIN * sk.radius();
-            let d = sm.position_at(t) - tether.anchor;
+            let sm = &self.segments[m];
+            let d = sm.position_at(t) - anchor;
             let w = sm.velocity;
             let (a, b, c) = (
                 w.length_squared(),
@@ -2625,17 +2629,7 @@ impl Solver {
             if !(0.0..=ctx.dt - t).contains(&toi) {
                 continue;
             }
-            let time = t + toi;
-            if time > self.queue_until {
-                continue;
-            }
-            self.queue.push(Event {
-                time,
-                a: i as u32,
-                b: j as u32,
-                version_a: self.versions[i],
-                version_b: self.versions[j],
-            });
+            self.queue_pair(i, j, t + toi);
         }
     }
 
@@ -2678,24 +2672,17 @@ impl Solver {
             return false;
         }
         for (k, m, pm) in [(a, b, pb), (b, a, pa)] {
-            let Some(&Strung { tether, .. }) = self.strung(k) else {
+            let Some((anchor, reach)) = self.strut(k, m) else {
                 continue;
             };
-            let (sk, sm) = (&self.segments[k], &self.segments[m]);
-            if sm.is_fixed() {
-                continue;
-            }
-            let limit = sm.radius() + sk.radius() - tether.length;
-            let r = tether.anchor - pm;
+            let r = anchor - pm;
             let distance = r.length();
             // (The time of impact puts it there to rounding.)
-            if limit <= 0.0
-                || distance == 0.0
-                || distance > (limit + STRUT_MARGIN * sk.radius()) * (1.0 + 1e-9)
-            {
+            if distance == 0.0 || distance > reach * (1.0 + 1e-9) {
                 continue;
             }
             let normal = r / distance;
+            let sm = &self.segments[m];
             let closing = sm.velocity.dot(normal);
             if closing <= 0.0 {
                 continue;

@@ -2348,7 +2348,7 @@ impl Solver {
                 }
                 let normal = r / distance;
                 let closing = self.local_velocities[lm].dot(normal);
-                let restitution =
+                let (restitution, _) =
                     self.strut_restitution(k as usize, m as usize, normal, closing, settings);
                 self.local_contacts.push(GroupContact {
                     a: lm,
@@ -2634,11 +2634,12 @@ impl Solver {
     }
 
     /// The restitution of a strut holding segment `m` off the anchor of segment `k`'s string,
-    /// `m` closing on it at `closing` along `normal`: the pair's, or none if it closes no
-    /// faster than a resting contact (or the impact is solved inelastic). Not the impact's
-    /// own: the strung sphere, whipped round, may be parting from the other where the other
-    /// still closes on the anchor (then resting, restitution 0: a sphere driven at 30 m/s
-    /// into the squeeze rebounded at 0.59 m/s instead of 30).
+    /// `m` closing on it at `closing` along `normal`, and whether it is a resting contact: the
+    /// pair's restitution, or none if it closes no faster than a resting contact (or the impact
+    /// is solved inelastic). Not the impact's own: the strung sphere, whipped round, may be
+    /// parting from the other where the other still closes on the anchor (then resting,
+    /// restitution 0: a sphere driven at 30 m/s into the squeeze rebounded at 0.59 m/s instead
+    /// of 30).
     fn strut_restitution(
         &self,
         k: usize,
@@ -2646,23 +2647,31 @@ impl Solver {
         normal: DVec3,
         closing: f64,
         settings: &Settings,
-    ) -> f64 {
+    ) -> (f64, bool) {
         let (em, ek) = (self.extra(m), self.extra(k));
-        if self.inelastic || closing <= self.resting_scale * em.acceleration.dot(normal).abs() {
+        let resting = closing <= self.resting_scale * em.acceleration.dot(normal).abs();
+        let restitution = if self.inelastic || resting {
             0.0
         } else {
             settings
                 .restitution_combine
                 .combine(em.restitution, ek.restitution)
-        }
+        };
+        (restitution, resting)
     }
 
     /// Answers `event` by a strut alone, if it is a strut's impact (see
     /// [`Solver::test_struts`]): its two spheres apart, one within [`STRUT_MARGIN`] of `R + r −
     /// ℓ` from the other's anchor and closing on it. That sphere's speed towards the anchor is
     /// turned back, times the pair's restitution (none if it closes no faster than a resting
-    /// contact). Returns whether it was.
-    fn resolve_strut(&mut self, event: &Event, ctx: &StepContext<'_>) -> bool {
+    /// contact), and the impact is reported as the pair's collision (the strung sphere stands
+    /// for the strut). Returns whether it was.
+    fn resolve_strut(
+        &mut self,
+        event: &Event,
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) -> bool {
         let (a, b) = (event.a as usize, event.b as usize);
         let t = event.time;
         let (sa, sb) = (&self.segments[a], &self.segments[b]);
@@ -2687,10 +2696,16 @@ impl Solver {
             if closing <= 0.0 {
                 continue;
             }
-            let restitution = self.strut_restitution(k, m, normal, closing, ctx.settings);
+            let (restitution, resting) =
+                self.strut_restitution(k, m, normal, closing, ctx.settings);
             let velocity = sm.velocity - normal * ((1.0 + restitution) * closing);
+            let impulse = (1.0 + restitution) * closing / self.extra(m).inverse_mass;
             self.segments[m].advance_to(t);
             self.set_velocity(m, velocity, t, ctx);
+            // Reported as the pair's collision, the strung sphere standing for the strut.
+            stats.collisions = stats.collisions.saturating_add(1);
+            stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
+            self.record_collision((m, k), t, normal, impulse, resting, ctx);
             return true;
         }
         false
@@ -2699,7 +2714,7 @@ impl Solver {
     fn resolve_event(&mut self, event: &Event, ctx: &StepContext<'_>, stats: &mut StepStats) {
         let (a, b) = (event.a as usize, event.b as usize);
         let t = event.time;
-        if self.strings && self.resolve_strut(event, ctx) {
+        if self.strings && self.resolve_strut(event, ctx, stats) {
             return;
         }
         if self.taut_at(a, t) || self.taut_at(b, t) {

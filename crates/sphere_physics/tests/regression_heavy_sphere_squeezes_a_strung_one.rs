@@ -66,7 +66,7 @@ fn squeeze(angle: f64, restitution: f64) -> Squeeze {
 
 /// Steps the scene for a second at 120 Hz; checks that the heavy sphere never ends a step
 /// nearer the anchor than it may come or deeper in the light one than 2% of its radius, and
-/// returns the heavy sphere's final velocity.
+/// that the pair's collision is reported, and returns the heavy sphere's final velocity.
 fn rebound(angle: f64, restitution: f64) -> DVec3 {
     let Squeeze {
         mut world,
@@ -74,8 +74,14 @@ fn rebound(angle: f64, restitution: f64) -> DVec3 {
         strung,
     } = squeeze(angle, restitution);
     let limit = BIG + SMALL - LENGTH;
+    let mut reported = 0;
     for step in 0..120 {
         world.step(1.0 / 120.0).unwrap();
+        reported += world
+            .collisions()
+            .iter()
+            .filter(|c| (c.a, c.b) == (heavy.min(strung), heavy.max(strung)))
+            .count();
         let (h, s) = (world.body(heavy).unwrap(), world.body(strung).unwrap());
         assert!(h.velocity().is_finite() && s.velocity().is_finite());
         let to_anchor = h.position().length();
@@ -87,6 +93,8 @@ fn rebound(angle: f64, restitution: f64) -> DVec3 {
         assert!(depth <= 0.02, "{angle}°, step {step}: {depth} deep");
         assert!(s.position().length() <= LENGTH * (1.0 + 1e-9));
     }
+    // The rebound is reported, as the pair's collision (at 0° the strut alone answers it).
+    assert!(reported > 0, "{angle}°: no collision reported");
     world.body(heavy).unwrap().velocity()
 }
 

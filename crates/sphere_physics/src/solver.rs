@@ -39,7 +39,9 @@ use crate::queue::{EventQueue, Timed};
 use crate::response::{
     GroupContact, conjugate_factor, conjugate_step, resolve_at, resolve_simultaneous,
 };
-use crate::{Body, Collision, Integrator, Settings, StepProfile, StepStats, Tether, TimeOfImpact};
+use crate::{
+    Body, Collision, ExactToi, Integrator, Settings, StepProfile, StepStats, Tether, TimeOfImpact,
+};
 
 mod glance;
 mod resting;
@@ -2610,26 +2612,18 @@ impl Solver {
             };
             let sm = &self.segments[m];
             let d = sm.position_at(t) - anchor;
-            let w = sm.velocity;
-            let (a, b, c) = (
-                w.length_squared(),
-                d.dot(w),
-                d.length_squared() - reach * reach,
-            );
-            // Already within (an impact between the two holds it off), or not closing.
-            if c <= 0.0 || b >= 0.0 {
+            // Already within: an impact between the two holds it off.
+            if d.length_squared() <= reach * reach {
                 continue;
             }
-            let discriminant = b * b - a * c;
-            if discriminant < 0.0 {
-                continue;
+            // The anchor as a sphere of radius `reach` that `m`'s centre must not enter: the
+            // exact swept test, whatever method the settings choose for pairs (the strut is
+            // the solver's own constraint).
+            let outcome =
+                ExactToi.time_of_impact(d, sm.velocity, reach, ctx.dt - t, ctx.settings.tolerance);
+            if let Some(toi) = outcome.time.filter(|toi| *toi >= 0.0) {
+                self.queue_pair(i, j, t + toi);
             }
-            // The smaller root, written without cancellation.
-            let toi = c / (-b + discriminant.sqrt());
-            if !(0.0..=ctx.dt - t).contains(&toi) {
-                continue;
-            }
-            self.queue_pair(i, j, t + toi);
         }
     }
 

@@ -331,8 +331,11 @@ pub(crate) struct Solver {
     /// contacts in their new order.
     resting_keys: Vec<(i64, u64, u32)>,
     resting_sorted: Vec<RestingContact>,
-    /// Scratch for [`Solver::fall_back`]: the pairs it has solved, sorted.
+    /// Scratch for [`Solver::fall_back`]: the pairs it has solved or left to a string's body,
+    /// sorted.
     fallback_pairs: Vec<(u32, u32)>,
+    /// Scratch for [`Solver::fall_back`]: a round's pairs with a body on a string, left alone.
+    fallback_strung: Vec<(u32, u32)>,
     /// Scratch for [`Solver::fall_back`]: the deep pushes it holds back, `(a, b, push)`.
     fallback_pushes: Vec<(u32, u32, f64)>,
     /// Pairs touching but not resting, or apart by less than [`Solver::near_reach`] beyond the

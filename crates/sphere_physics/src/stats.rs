@@ -24,9 +24,9 @@ pub struct StepStats {
     pub resting_contacts: u32,
     /// Impacts found but not resolved because a body's share of the step's budget
     /// ([`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)) ran out,
-    /// or the whole budget did with bodies on strings, or between bodies the fallback solve
-    /// left alone, or pairs its rounds ran out before (an impact found again after one of its
-    /// bodies changed counts again).
+    /// or between bodies the fallback solve left alone once the whole budget did, or pairs its
+    /// rounds ran out before, or pairs with a body on a string that it found could meet (it
+    /// holds no string); an impact found again after one of its bodies changed counts again.
     /// Non-zero means the step was cut short: bodies may be left overlapping until the next
     /// step.
     pub collisions_deferred: u32,

@@ -56,30 +56,32 @@ pub struct Settings {
     /// (which falls as dt²), falls as `1/substeps²` at `substeps` times the cost. The resting
     /// speed and the creep distance (`resting_factor`, `creep_fraction`) are each substep's.
     pub substeps: u32,
-    /// The step's collision budget is this times the number of dynamic bodies. When it runs out (a
-    /// crowd landing at once, each collision bringing on more: a thousand spheres dropped together
-    /// into a box), the rest of the step is solved at once instead of one collision at a time:
-    /// every pair that could meet is kept from closing past touching, restitution 0, as the resting
-    /// contacts are, in rounds until the pairs each round's changes bring together are solved too
-    /// (at most 32; any left after them are counted as deferred), sweeping on while a pair would
-    /// still end the step more than a hundredth of the smaller radius past touching (up to 1024
-    /// more sweeps: a long line of spheres struck hard passes its impulses on one contact a sweep)
-    /// ([`StepStats::fell_back`]; with bodies on strings the rest are deferred to the next step
-    /// instead). No body takes more than 64 times this in one step (so that a sphere caught between
-    /// fixed ones, which bounces between them without end, cannot spend the whole budget): a body
+    /// The step's collision budget is this times the number of dynamic bodies. When it runs out
+    /// (a crowd landing at once, each collision bringing on more: a thousand spheres dropped
+    /// together into a box), the rest of the step is solved at once instead of one collision at
+    /// a time: every pair that could meet is kept from closing past touching, restitution 0, as
+    /// the resting contacts are, in rounds until the pairs each round's changes bring together
+    /// are solved too (at most 32; any left after them are counted as deferred), sweeping on
+    /// while a pair would still end the step more than a hundredth of the smaller radius past
+    /// touching (up to 1024 more sweeps: a long line of spheres struck hard passes its impulses
+    /// on one contact a sweep) ([`StepStats::fell_back`]; bodies on strings are left out of
+    /// that solve, which holds no string: their pairs are deferred to the next step instead).
+    /// No body takes more than 64 times this in one step (so that a sphere caught between fixed
+    /// ones, which bounces between them without end, cannot spend the whole budget): a body
     /// past that share is solved at once with every contact touching it through dynamic bodies,
-    /// restitution 0 (a light sphere squeezed between heavy ones bounces faster and faster, without
-    /// end before the squeeze does; this is how those bounces end), a few times in a step, and
-    /// its collisions after that are deferred to the next step and counted in
-    /// [`StepStats::collisions_deferred`]. The shower and gas benchmarks take under 0.3 collisions
-    /// per sphere per step, and a sphere at the bottom of the 100k shower's pile up to 381. With
-    /// substeps, each substep has this budget (and records its collisions): a wedged sphere may
-    /// take `substeps` times as many in one [`World::step`]. Default 16 (64 until 2026-12-01, when
-    /// the budget's end deferred the rest: a landing crowd then sank 4.5 cm into itself), at most
-    /// [`MAX_COLLISIONS_PER_BODY`]. Lowering it makes a landing crowd's steps cheaper (a pit of
-    /// 1000 dropped together: 6.7 µs a sphere a step at 4 against 12.9 at 16, no deeper), but not
-    /// a crowd of hundreds of thousands of contacts, whose fallback solve costs more than the
-    /// collisions it replaces (the 100k shower benchmark's worst step: 5.2 s at 4, 2.2 s at 16).
+    /// restitution 0 (a light sphere squeezed between heavy ones bounces faster and faster,
+    /// without end before the squeeze does; this is how those bounces end), a few times in a
+    /// step, and its collisions after that are deferred to the next step and counted in
+    /// [`StepStats::collisions_deferred`]. The shower and gas benchmarks take under 0.3
+    /// collisions per sphere per step, and a sphere at the bottom of the 100k shower's pile up
+    /// to 381. With substeps, each substep has this budget (and records its collisions): a
+    /// wedged sphere may take `substeps` times as many in one [`World::step`]. Default 16 (64
+    /// until 2026-12-01, when the budget's end deferred the rest: a landing crowd then sank 4.5
+    /// cm into itself), at most [`MAX_COLLISIONS_PER_BODY`]. Lowering it makes a landing
+    /// crowd's steps cheaper (a pit of 1000 dropped together: 6.7 µs a sphere a step at 4
+    /// against 12.9 at 16, no deeper), but not a crowd of hundreds of thousands of contacts,
+    /// whose fallback solve costs more than the collisions it replaces (the 100k shower
+    /// benchmark's worst step: 5.2 s at 4, 2.2 s at 16).
     pub max_collisions_per_body: u32,
 }
 

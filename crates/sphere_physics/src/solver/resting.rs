@@ -315,10 +315,10 @@ impl Solver {
     /// allowance (a long chain, see `fallback_excess`); the deep pushes held back then go on
     /// top, each of their rounds finished the same way (see [`Solver::push_on`]). The impacts
     /// left in the queue are then stale, and the step drifts to its end. Bodies on strings are
-    /// left to the budget's deferral as before (the fallback is skipped when any body hangs on
-    /// a string).
+    /// left out (the solve holds no string): their pairs that could meet are left to the
+    /// budget's deferral and counted as deferred, and their own impacts and bends stay queued.
     pub(super) fn fall_back(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
-        if self.strings || t >= ctx.dt {
+        if t >= ctx.dt {
             return;
         }
         let rest = ctx.dt - t;
@@ -332,9 +332,9 @@ impl Solver {
         self.fallback_pairs.clear();
         let mut bodies = std::mem::take(&mut self.local_bodies);
         bodies.clear();
-        bodies.extend(
-            (0..self.segments.len() as u32).filter(|&k| !self.segments[k as usize].is_fixed()),
-        );
+        bodies.extend((0..self.segments.len() as u32).filter(|&k| {
+            !self.segments[k as usize].is_fixed() && self.string_of(k as usize).is_none()
+        }));
         self.fallback_pushes.clear();
         let mut candidates = std::mem::take(&mut self.candidates);
         // The solve changes velocities, which may bring other pairs together: rounds, each
@@ -453,6 +453,7 @@ impl Solver {
             // fall short of the margin from the smaller's side, is taken by a later round if
             // it closes.
             let margin = if *round == 0 { FALLBACK_MARGIN } else { 0.0 };
+            self.fallback_strung.clear();
             for &k in bodies.iter() {
                 let k = k as usize;
                 candidates.clear();
@@ -494,6 +495,11 @@ impl Solver {
                     if approach * rest + margin * reach < gap - 0.5 * band {
                         continue;
                     }
+                    if self.string_of(a).is_some() || self.string_of(b).is_some() {
+                        // Not solved here (nor, once the budget has run out, anywhere).
+                        self.fallback_strung.push(key);
+                        continue;
+                    }
                     let press = self.start_press(a, b, normal);
                     let smaller = sa.radius().min(sb.radius());
                     let allowed = if gap > 0.0 {
@@ -519,6 +525,13 @@ impl Solver {
                     self.tested.push(key);
                     self.push_resting(key.0, key.1, normal, bias, press, gap > band);
                 }
+            }
+            if !self.fallback_strung.is_empty() {
+                // Each counted once: seen again by a later round, they are skipped above.
+                let left = u32::try_from(self.fallback_strung.len()).unwrap_or(u32::MAX);
+                stats.collisions_deferred = stats.collisions_deferred.saturating_add(left);
+                self.fallback_pairs.extend_from_slice(&self.fallback_strung);
+                self.fallback_pairs.sort_unstable();
             }
             if self.resting.len() == known {
                 break;

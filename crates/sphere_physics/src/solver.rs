@@ -97,7 +97,8 @@ const STRING_SAG: f64 = 0.01;
 /// each bend takes some of its energy: a heavy sphere squeezing one (the scene of
 /// `regression_heavy_sphere_squeezes_a_strung_one.rs`, driven at 10 and 30 m/s) rebounds at 35%
 /// to 91% of its speed at some angles with 64, and at its speed at every angle tried with 512;
-/// not kept, as the fuzz then spent its collision budget in more scenes (docs/robustness.md).
+/// not kept: the fuzz is no better with it (over fresh seeds), and such a sphere may then spend
+/// half its share of the collision budget on bends (docs/robustness.md).
 const STRING_PIECES: f64 = 64.0;
 
 /// Under gravity or an applied force, how deep (a fraction of the smaller radius) a pair with

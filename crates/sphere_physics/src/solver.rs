@@ -34,6 +34,7 @@ use std::cmp::Ordering;
 use glam::DVec3;
 
 use crate::broad_phase::{Aabb, BroadPhase};
+use crate::contact::touching_or_overlapping;
 use crate::instant::InstantContacts;
 use crate::queue::{EventQueue, Timed};
 use crate::response::{
@@ -2349,7 +2350,10 @@ impl Solver {
                 }
                 let r = anchor - self.segments[m as usize].position;
                 let distance = r.length();
-                if distance == 0.0 || distance > reach {
+                // Within reach or touching it, as a strut's own impact finds it (see
+                // `Solver::test_struts`): that impact, solved here, must meet the strut.
+                if distance == 0.0 || !touching_or_overlapping(distance, reach, settings.tolerance)
+                {
                     continue;
                 }
                 let normal = r / distance;
@@ -2684,8 +2688,9 @@ impl Solver {
             };
             let r = anchor - pm;
             let distance = r.length();
-            // (The time of impact puts it there to rounding.)
-            if distance == 0.0 || distance > reach * (1.0 + 1e-9) {
+            // (The time of impact puts it there, or touching it within the tolerance.)
+            if distance == 0.0 || !touching_or_overlapping(distance, reach, ctx.settings.tolerance)
+            {
                 continue;
             }
             let normal = r / distance;

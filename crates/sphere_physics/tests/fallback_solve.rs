@@ -4,35 +4,13 @@
 //! a budget of one collision per sphere) keeps its momentum exactly, gains no energy, and ends
 //! the step with no two spheres closer than touching.
 
-use sphere_physics::glam::DVec3;
-use sphere_physics::{Settings, SphereDesc, World};
+mod common;
 
 const DT: f64 = 1.0 / 60.0;
 
-fn crowd(budget: u32) -> World {
-    let mut world = World::new(Settings {
-        max_collisions_per_body: budget,
-        ..Settings::default()
-    });
-    for i in 0..7 {
-        for j in 0..7 {
-            for k in 0..7 {
-                let at = DVec3::new(f64::from(i), f64::from(j), f64::from(k)) * 0.105
-                    - DVec3::splat(0.315);
-                // Towards the centre at 3 m/s, with a little sideways for irregular meetings.
-                let velocity = -at * 10.0 + DVec3::new(0.1 * f64::from((i * j) % 3), 0.0, 0.0);
-                world
-                    .add_sphere(SphereDesc::new(0.05).at(at).moving(velocity))
-                    .unwrap();
-            }
-        }
-    }
-    world
-}
-
 #[test]
 fn a_crushed_crowd_keeps_its_momentum_and_gains_no_energy() {
-    let mut world = crowd(1);
+    let mut world = common::crushed_crowd(1);
     let (momentum, energy) = (world.momentum(), world.kinetic_energy());
     let stats = *world.step(DT).unwrap();
     assert!(stats.fell_back, "{stats:?}");
@@ -60,7 +38,7 @@ fn a_crushed_crowd_keeps_its_momentum_and_gains_no_energy() {
 
 #[test]
 fn the_same_crowd_with_the_budget_it_needs_falls_back_never() {
-    let mut world = crowd(65_536);
+    let mut world = common::crushed_crowd(65_536);
     let stats = *world.step(DT).unwrap();
     assert!(!stats.fell_back, "{stats:?}");
 }

@@ -7,31 +7,18 @@
 //! the pairs with a sphere on a string to the deferral, counted as deferred: 15 such scenes of
 //! seeds 0 to 89 999, and 16 of 200 000 to 244 999 against 30.
 
+mod common;
+
 use sphere_physics::glam::DVec3;
-use sphere_physics::{Settings, SphereDesc, World};
+use sphere_physics::{SphereDesc, World};
 
 const DT: f64 = 1.0 / 60.0;
 
-/// A ball of 343 spheres in zero gravity, each moving towards the centre at 3 m/s, with a
-/// budget of one collision per sphere (as `fallback_solve.rs`), and a sphere of the same size
-/// at `at`, moving at `velocity`, on a string of `length` from `anchor`.
+/// The crushed crowd of `fallback_solve.rs` (`common::crushed_crowd`, a budget of one
+/// collision per sphere), and a sphere of the same size at `at`, moving at `velocity`, on a
+/// string of `length` from `anchor`.
 fn crowd_and_strung(anchor: DVec3, length: f64, at: DVec3, velocity: DVec3) -> (World, usize) {
-    let mut world = World::new(Settings {
-        max_collisions_per_body: 1,
-        ..Settings::default()
-    });
-    for i in 0..7 {
-        for j in 0..7 {
-            for k in 0..7 {
-                let at = DVec3::new(f64::from(i), f64::from(j), f64::from(k)) * 0.105
-                    - DVec3::splat(0.315);
-                let velocity = -at * 10.0 + DVec3::new(0.1 * f64::from((i * j) % 3), 0.0, 0.0);
-                world
-                    .add_sphere(SphereDesc::new(0.05).at(at).moving(velocity))
-                    .unwrap();
-            }
-        }
-    }
+    let mut world = common::crushed_crowd(1);
     let crowd = world.len();
     world
         .add_sphere(

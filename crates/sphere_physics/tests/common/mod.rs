@@ -1,7 +1,8 @@
 //! The scene of `properties::rain_on_a_big_fixed_sphere`, shared with the tests that replay the
 //! cases it found, the creep allowance, a sheet of spheres over fixed ones, head-on pairs
 //! (alone or on a lattice) that must each collide within one step, a pit of spheres dropped into an open box,
-//! spheres among others hanging on strings, a crowd placed overlapping with no gravity, and
+//! spheres among others hanging on strings, a crowd placed overlapping with no gravity, a
+//! crowd crushed together with a small collision budget, and
 //! the deepest overlap (also beyond the contact band) and centre of mass of a world; and the
 //! property tests' configuration from a fixed seed.
 // Each test file uses part of this.
@@ -273,6 +274,29 @@ pub fn overlapping_crowd(
                             .moving(velocity)
                             .with_restitution(restitution),
                     )
+                    .unwrap();
+            }
+        }
+    }
+    world
+}
+
+/// A ball of 343 spheres of radius 0.05 in zero gravity, 7 by 7 by 7 on a lattice of spacing
+/// 0.105, each moving towards the centre at up to 3 m/s (with a little sideways, for irregular
+/// meetings), with a collision budget of `budget` per sphere.
+pub fn crushed_crowd(budget: u32) -> World {
+    let mut world = World::new(Settings {
+        max_collisions_per_body: budget,
+        ..Settings::default()
+    });
+    for i in 0..7 {
+        for j in 0..7 {
+            for k in 0..7 {
+                let at = DVec3::new(f64::from(i), f64::from(j), f64::from(k)) * 0.105
+                    - DVec3::splat(0.315);
+                let velocity = -at * 10.0 + DVec3::new(0.1 * f64::from((i * j) % 3), 0.0, 0.0);
+                world
+                    .add_sphere(SphereDesc::new(0.05).at(at).moving(velocity))
                     .unwrap();
             }
         }

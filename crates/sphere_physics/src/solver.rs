@@ -2306,7 +2306,8 @@ impl Solver {
             );
             stats.collisions = stats.collisions.saturating_add(1);
             stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
-            if self.gave_none(a, b, impulse, settings) {
+            let inverse_masses = self.local_inverse_masses[c.a] + self.local_inverse_masses[c.b];
+            if gave_none(impulse, inverse_masses, settings) {
                 self.bend_sooner_if_closing(a, b, t, ctx);
                 self.settled.push(Settled::now(&self.versions, a, b));
             } else if resting {
@@ -2794,7 +2795,7 @@ impl Solver {
         }
         self.set_velocity(a, r.velocity_a, t, ctx);
         self.set_velocity(b, r.velocity_b, t, ctx);
-        if self.gave_none(a, b, r.impulse, ctx.settings) {
+        if gave_none(r.impulse, ima + imb, ctx.settings) {
             self.bend_sooner_if_closing(a, b, t, ctx);
             self.settled.push(Settled::now(&self.versions, a, b));
         } else if resting {
@@ -2804,18 +2805,6 @@ impl Solver {
         stats.collisions = stats.collisions.saturating_add(1);
         stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
         self.record_collision((a, b), t, normal, r.impulse, resting, ctx);
-    }
-
-    /// Whether an impact of `a` and `b` gave them no impulse: none, or one that changes their
-    /// speed along the normal by no more than the tolerance's zero (rounding). Such a pair is
-    /// settled at its instant (see `Solver::settled`). A pair with a sphere on a taut string,
-    /// parting on the string's tangent while its chord turned back in, took impulses of 3e-20
-    /// kg m/s at one instant again and again, each counted as an impulse, until a body's share
-    /// of the collision budget ran out (`sphere-fuzz --strings fast` seed 218 317: 688 times,
-    /// and the step ended with a pair 0.61 of a radius deep).
-    fn gave_none(&self, a: usize, b: usize, impulse: f64, settings: &Settings) -> bool {
-        let inverse_masses = self.extra(a).inverse_mass + self.extra(b).inverse_mass;
-        impulse <= 0.0 || settings.tolerance.is_zero(impulse * inverse_masses)
     }
 
     /// Records the collision of bodies `a` and `b` at time `t` of the step, along `normal`
@@ -3067,6 +3056,17 @@ fn ball_meets_box(fixed: &Segment, other: &Segment, ctx: &StepContext<'_>) -> bo
     let radius = (fixed.radius() + margin) * (1.0 + 1e-12);
     let closest = fixed.position.clamp(b.lo, b.hi);
     (closest - fixed.position).length_squared() <= radius * radius
+}
+
+/// Whether an impact gave its pair no impulse: none, or one that changes their speed along
+/// the normal by no more than the tolerance's zero (rounding), `inverse_masses` the sum of
+/// theirs. Such a pair is settled at its instant (see `Solver::settled`). A pair with a sphere
+/// on a taut string, parting on the string's tangent while its chord turned back in, took
+/// impulses of 3e-20 kg m/s at one instant again and again, each counted as an impulse, until
+/// a body's share of the collision budget ran out (`sphere-fuzz --strings fast` seed 218 317:
+/// 688 times, and the step ended with a pair 0.61 of a radius deep).
+fn gave_none(impulse: f64, inverse_masses: f64, settings: &Settings) -> bool {
+    impulse <= 0.0 || settings.tolerance.is_zero(impulse * inverse_masses)
 }
 
 /// The box a segment sweeps over the rest of the step, grown by the contact tolerance.

@@ -2343,21 +2343,13 @@ impl Solver {
                     self.local_index[k as usize] as usize,
                     self.local_index[m as usize] as usize,
                 );
-                let Some((anchor, reach)) = self.strut(k as usize, m as usize) else {
-                    continue;
-                };
                 if !self.local_taut[lk] {
                     continue;
                 }
-                let r = anchor - self.segments[m as usize].position;
-                let distance = r.length();
-                // Within reach or touching it, as a strut's own impact finds it (see
-                // `Solver::test_struts`): that impact, solved here, must meet the strut.
-                if distance == 0.0 || !touching_or_overlapping(distance, reach, settings.tolerance)
-                {
+                let position = self.segments[m as usize].position;
+                let Some(normal) = self.strut_at(k as usize, m as usize, position, settings) else {
                     continue;
-                }
-                let normal = r / distance;
+                };
                 let closing = self.local_velocities[lm].dot(normal);
                 let (restitution, _) =
                     self.strut_restitution(k as usize, m as usize, normal, closing, settings);
@@ -2610,6 +2602,18 @@ impl Solver {
         (!sm.is_fixed() && limit > 0.0).then(|| (tether.anchor, limit + STRUT_MARGIN * sk.radius()))
     }
 
+    /// The direction from segment `m` at `position` to the anchor of segment `k`'s string, if
+    /// a strut holds `m` off that anchor there (see [`Solver::strut`]): `m` within the strut's
+    /// reach, or touching it within the tolerance, as a strut's own impact finds it (see
+    /// [`Solver::test_struts`]; that impact, solved in a group or alone, must meet the strut).
+    fn strut_at(&self, k: usize, m: usize, position: DVec3, settings: &Settings) -> Option<DVec3> {
+        let (anchor, reach) = self.strut(k, m)?;
+        let r = anchor - position;
+        let distance = r.length();
+        (distance > 0.0 && touching_or_overlapping(distance, reach, settings.tolerance))
+            .then(|| r / distance)
+    }
+
     /// Queues pair `(i, j)`'s strut impact (see [`Solver::add_struts`]), if one of them hangs
     /// on a string and the other's drift takes its centre within [`STRUT_MARGIN`] of `R + r −
     /// ℓ` from the string's anchor later in the step: an impact found at no contact between
@@ -2630,7 +2634,7 @@ impl Solver {
             // the solver's own constraint).
             let outcome =
                 ExactToi.time_of_impact(d, sm.velocity, reach, ctx.dt - t, ctx.settings.tolerance);
-            if let Some(toi) = outcome.time.filter(|toi| *toi >= 0.0) {
+            if let Some(toi) = outcome.time {
                 self.queue_pair(i, j, t + toi);
             }
         }
@@ -2684,17 +2688,9 @@ impl Solver {
             return false;
         }
         for (k, m, pm) in [(a, b, pb), (b, a, pa)] {
-            let Some((anchor, reach)) = self.strut(k, m) else {
+            let Some(normal) = self.strut_at(k, m, pm, ctx.settings) else {
                 continue;
             };
-            let r = anchor - pm;
-            let distance = r.length();
-            // (The time of impact puts it there, or touching it within the tolerance.)
-            if distance == 0.0 || !touching_or_overlapping(distance, reach, ctx.settings.tolerance)
-            {
-                continue;
-            }
-            let normal = r / distance;
             let sm = &self.segments[m];
             let closing = sm.velocity.dot(normal);
             if closing <= 0.0 {

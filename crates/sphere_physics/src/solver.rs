@@ -2455,9 +2455,6 @@ fn pressing(a: &Extra, b: &Extra, normal: DVec3) -> f64 {
         .max(b.acceleration.dot(normal).abs())
 }
 
-/// A collision record with `a` the body of the smaller id: swapping the pair turns the normal
-/// round, and the contact point is the same point.
-#[allow(clippy::too_many_arguments)]
 /// How far two bodies overlap (negative when apart).
 fn overlap(a: &Body, b: &Body) -> f64 {
     a.radius() + b.radius() - (b.position() - a.position()).length()

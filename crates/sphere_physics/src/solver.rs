@@ -689,6 +689,49 @@ impl Solver {
         stats: &mut StepStats,
     ) -> Result<(), usize> {
         let mut laps = Laps::start(self.profiling);
+        let dynamic = self.integrate(bodies, ctx)?;
+        // The broad phase and the boxes are out of the solver while the first pass walks them
+        // (each pair it finds is tested by the solver).
+        let (mut broad, mut boxes) = (
+            std::mem::take(&mut self.broad),
+            std::mem::take(&mut self.boxes),
+        );
+        laps.lap(&mut self.profile.integrate);
+        self.sort_spatially(&mut broad, &mut boxes, ctx);
+        laps.lap(&mut self.profile.sort);
+        broad.build(&boxes);
+        laps.lap(&mut self.profile.build);
+        self.first_pass(&mut broad, &boxes, ctx, stats);
+        (self.broad, self.boxes) = (broad, boxes);
+        laps.lap(&mut self.profile.first_pass);
+        self.start_stamps();
+        if !self.resting.is_empty() {
+            self.add_guards(ctx);
+            self.solve_resting(ctx, stats);
+            self.caching = !self.strings && ctx.toi.is_none();
+            self.requery_touched(0.0, ctx, stats);
+        } else {
+            self.warm.clear();
+            self.rested.clear();
+        }
+        laps.lap(&mut self.profile.resting);
+        self.run_events(dynamic, ctx, stats);
+        laps.lap(&mut self.profile.events);
+        if let Some(k) = self.unbounded {
+            return Err(self.order[k] as usize);
+        }
+        self.write_back(bodies, ctx, stats);
+        laps.lap(&mut self.profile.write_back);
+        self.find_max_overlap(bodies, ctx, stats);
+        laps.lap(&mut self.profile.overlap);
+        Ok(())
+    }
+
+    /// Starts the step: each body's kick before its drift, its segment (bent along its string
+    /// if it hangs on one), swept box and [`Extra`], and the step's scales from the largest
+    /// acceleration. Returns how many bodies are dynamic, or the index of a body whose drift
+    /// would leave the finite range.
+    fn integrate(&mut self, bodies: &[Body], ctx: &StepContext<'_>) -> Result<u32, usize> {
         let dt = ctx.dt;
         let settings = ctx.settings;
         self.tested.clear();
@@ -786,17 +829,21 @@ impl Solver {
             f64::INFINITY
         };
         self.apart = Apart::new(settings.tolerance.epsilon());
+        Ok(dynamic)
+    }
 
-        // First impacts of every pair whose swept boxes meet.
-        let (mut broad, boxes) = (
-            std::mem::take(&mut self.broad),
-            std::mem::take(&mut self.boxes),
-        );
-        laps.lap(&mut self.profile.integrate);
+    /// Puts the segments (and `boxes`) in `broad`'s spatial order, where neighbours in space
+    /// are neighbours in memory, and readies the per-segment marks for that order.
+    fn sort_spatially(
+        &mut self,
+        broad: &mut BroadPhase,
+        boxes: &mut Vec<Aabb>,
+        ctx: &StepContext<'_>,
+    ) {
+        let (dt, settings) = (ctx.dt, ctx.settings);
         // Work in the broad phase's spatial order: neighbours in space are neighbours in memory.
-        let mut boxes = boxes;
         self.order.clear();
-        match broad.sort(&boxes) {
+        match broad.sort(boxes) {
             Some(permutation) => {
                 self.order.extend_from_slice(permutation);
                 self.scratch_segments.clear();
@@ -811,7 +858,7 @@ impl Solver {
                         .iter()
                         .map(|segment| swept_box(segment, dt, settings)),
                 );
-                std::mem::swap(&mut boxes, &mut self.scratch_boxes);
+                std::mem::swap(boxes, &mut self.scratch_boxes);
             }
             None => self.order.extend(0..self.segments.len() as u32),
         }
@@ -848,9 +895,19 @@ impl Solver {
                 }
             }
         }
-        laps.lap(&mut self.profile.sort);
-        broad.build(&boxes);
-        laps.lap(&mut self.profile.build);
+    }
+
+    /// The first pass: every pair whose boxes meet in `broad` is a resting contact or gets its
+    /// time of impact queued (after each segment's version is set to 0 and each string's first
+    /// bend queued).
+    fn first_pass(
+        &mut self,
+        broad: &mut BroadPhase,
+        boxes: &[Aabb],
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let (dt, settings) = (ctx.dt, ctx.settings);
         self.versions.clear();
         self.versions.resize(self.segments.len(), 0);
         for s in 0..self.strung.len() {
@@ -931,7 +988,7 @@ impl Solver {
         );
         pairs.clear();
         asked.clear();
-        broad.pairs_batched(&boxes, &mut pairs, PAIR_BATCH, |batch| {
+        broad.pairs_batched(boxes, &mut pairs, PAIR_BATCH, |batch| {
             for &(_, j) in batch.iter() {
                 prefetch(&self.segments[j as usize]);
             }
@@ -942,20 +999,14 @@ impl Solver {
         test_batch(self, &asked);
         test_batch(self, &pairs);
         (self.pairs, self.asked_pairs) = (pairs, asked);
-        (self.broad, self.boxes) = (broad, boxes);
-        laps.lap(&mut self.profile.first_pass);
-        self.start_stamps();
-        if !self.resting.is_empty() {
-            self.add_guards(ctx);
-            self.solve_resting(ctx, stats);
-            self.caching = !self.strings && ctx.toi.is_none();
-            self.requery_touched(0.0, ctx, stats);
-        } else {
-            self.warm.clear();
-            self.rested.clear();
-        }
-        laps.lap(&mut self.profile.resting);
+    }
 
+    /// The event loop: the queued impacts taken in time order and solved, each changed body's
+    /// pairs tested again, until the queue is empty; within the collision budget of
+    /// `max_collisions_per_body` for each of the `dynamic` bodies, past which the rest of the
+    /// step is solved at once (see `Solver::fall_back`).
+    fn run_events(&mut self, dynamic: u32, ctx: &StepContext<'_>, stats: &mut StepStats) {
+        let (dt, settings) = (ctx.dt, ctx.settings);
         self.instant.start(f64::NEG_INFINITY, self.segments.len());
         let budget = settings
             .max_collisions_per_body
@@ -1141,11 +1192,12 @@ impl Solver {
             self.caching = !self.strings && ctx.toi.is_none() && !self.instant.is_empty();
             self.requery_touched(event.time, ctx, stats);
         }
+    }
 
-        laps.lap(&mut self.profile.events);
-        if let Some(k) = self.unbounded {
-            return Err(self.order[k] as usize);
-        }
+    /// Writes each body's position and velocity at the step's end, and the step's energies
+    /// and momentum into `stats`.
+    fn write_back(&mut self, bodies: &mut [Body], ctx: &StepContext<'_>, stats: &mut StepStats) {
+        let (dt, settings) = (ctx.dt, ctx.settings);
         // Write back in body order (bodies and extras read in order, segments gathered),
         // summing the energies and momentum while each body is at hand.
         let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
@@ -1188,7 +1240,17 @@ impl Solver {
         stats.kinetic_energy = kinetic;
         stats.potential_energy = potential;
         stats.momentum = momentum;
-        laps.lap(&mut self.profile.write_back);
+    }
+
+    /// Puts the deepest overlap left at the step's end in `stats`, moving overlapping pairs
+    /// apart first where nothing else will (see `Solver::separate`).
+    fn find_max_overlap(
+        &mut self,
+        bodies: &mut [Body],
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let dt = ctx.dt;
         // Two bodies overlapping now had overlapping boxes when either last changed, so they
         // were tested then, with the drifts they ended on, which ended them overlapping (give
         // or take rounding, allowed for generously): the tested pairs are enough to find the
@@ -1206,8 +1268,6 @@ impl Solver {
             }
         }
         stats.max_overlap = max_overlap;
-        laps.lap(&mut self.profile.overlap);
-        Ok(())
     }
 
     /// The deepest overlap at the step's end (`dt`) among the tested pairs, 0 if none.

@@ -72,11 +72,10 @@ pub struct SphereDesc {
 /// sphere's velocity) the drift over the rest of the step is bent so that it ends exactly at the
 /// string's length (the SHAKE correction), and the outward radial velocity is removed at the
 /// end. With the [`Leapfrog`](crate::Leapfrog) integrator this is symplectic: a pendulum's energy
-/// oscillates within a relative `~(ω·dt)²/8` and does not drift. A string that goes from slack
-/// to taut within a step is approximated: the whole step's drift is bent, so a collision in that
-/// step is timed on the bent drift (off by at most a fraction of the step), though resolved with
-/// the sphere's free velocity before the string catches it (when its straight free path reaches
-/// the length) and with the string taut from then on.
+/// oscillates within a relative `~(ω·dt)²/8` and does not drift. A string slack when the step
+/// begins (its sphere more than a hundredth of its radius inside the length) bends nothing until
+/// the sphere's straight free path reaches the length: the sphere moves freely until then, and
+/// from that instant the string holds it (its outward velocity removed) and bends its drift.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tether {

@@ -772,10 +772,18 @@ impl Solver {
             let mut velocity = body.velocity() + kicks.0;
             if let Some(tether) = body.tether() {
                 let free_velocity = velocity;
-                let (taut, sag, until);
-                (velocity, taut, sag, until) =
-                    bend(body.position(), velocity, tether, body.radius(), 0.0, dt);
                 let distance = (body.position() - tether.anchor).length();
+                let slack = distance < tether.length * (1.0 - 1e-9);
+                let (taut, sag, until);
+                (velocity, taut, sag, until) = bend(
+                    body.position(),
+                    velocity,
+                    tether,
+                    slack,
+                    body.radius(),
+                    0.0,
+                    dt,
+                );
                 self.strung.push(Strung {
                     body: index as u32,
                     tether,
@@ -783,7 +791,7 @@ impl Solver {
                     free_velocity,
                     sag,
                     until,
-                    slack: distance < tether.length * (1.0 - 1e-9),
+                    slack,
                 });
             }
             let segment = Segment {
@@ -1328,6 +1336,7 @@ impl Solver {
                 segment.position,
                 velocity,
                 strung.tether,
+                strung.slack,
                 segment.radius(),
                 t,
                 ctx.dt,

@@ -72,7 +72,8 @@ pub(super) struct Strung {
     /// The body's index (the strung bodies are listed in body order).
     pub(super) body: u32,
     pub(super) tether: Tether,
-    /// The string bent this segment's drift: it reaches its length by the end of the step.
+    /// The string bent this segment's drift, or catches it within the step: it reaches its
+    /// length by the end of the step.
     pub(super) taut: bool,
     /// The velocity before the bend (what the sphere moves at while the string is slack).
     pub(super) free_velocity: DVec3,
@@ -267,23 +268,7 @@ impl Solver {
             return None;
         };
         let segment = &self.segments[k];
-        let r = segment.position - tether.anchor;
-        // |r + v s|² = L², for the root s >= 0 (one, with the sphere inside the length).
-        let (a, b, c) = (
-            v.length_squared(),
-            r.dot(v),
-            r.length_squared() - tether.length * tether.length,
-        );
-        if c >= 0.0 {
-            return Some(segment.t0);
-        }
-        let root = (b * b - a * c).sqrt();
-        let s = if b >= 0.0 {
-            -c / (b + root)
-        } else {
-            (root - b) / a
-        };
-        s.is_finite().then_some(segment.t0 + s)
+        catch_after(segment.position - tether.anchor, v, tether.length).map(|s| segment.t0 + s)
     }
 
     /// Adds to a group's contacts (in [`Solver::local_contacts`], its bodies already local)
@@ -537,16 +522,29 @@ pub(super) fn chord(
 /// string swings it along (a cut grows about as the square of the time), the piece lasting
 /// at least 1/[`STRING_PIECES`] of the step. Returns the velocity, whether the string bent
 /// it, the chord's dip (see [`chord`]), and when the drift reaches the string's length, to be
-/// bent again (`dt` if at the end).
+/// bent again (`dt` if at the end). A `slack` string whose sphere lies farther inside its length
+/// than [`STRING_SAG`] of its radius bends nothing: the drift is the free one, until its
+/// straight path reaches the length (the catch), if that is within the step.
 pub(super) fn bend(
     position: DVec3,
     velocity: DVec3,
     tether: Tether,
+    slack: bool,
     radius: f64,
     t: f64,
     dt: f64,
 ) -> (DVec3, bool, f64, f64) {
     let from = position - tether.anchor;
+    // Slack, and farther inside than a chord dips (nearer, the sphere is on its string), the
+    // string bends nothing until it catches the sphere: the drift is free until then, and bent
+    // again there (on the string).
+    if slack
+        && tether.length - from.length() > STRING_SAG * radius
+        && let Some(s) = catch_after(from, velocity, tether.length)
+        && t + s < dt
+    {
+        return (velocity, true, 0.0, t + s);
+    }
     // The chord over `tau`, and how deep it cuts inside the arc.
     let chord_over = |tau: f64| {
         let (bent, taut, sag) = chord(position, velocity, tether, tau);
@@ -578,6 +576,28 @@ pub(super) fn bend(
         }
         piece = (0.5 * piece).max(shortest);
     }
+}
+
+/// How long a sphere `r` from its string's anchor, moving at `velocity` in a straight line,
+/// takes to reach the string's `length` (0 if it is there or beyond; `None` if it never does,
+/// being at rest).
+fn catch_after(r: DVec3, velocity: DVec3, length: f64) -> Option<f64> {
+    // |r + v s|² = L², for the root s >= 0 (one, with the sphere inside the length).
+    let (a, b, c) = (
+        velocity.length_squared(),
+        r.dot(velocity),
+        r.length_squared() - length * length,
+    );
+    if c >= 0.0 {
+        return Some(0.0);
+    }
+    let root = (b * b - a * c).sqrt();
+    let s = if b >= 0.0 {
+        -c / (b + root)
+    } else {
+        (root - b) / a
+    };
+    s.is_finite().then_some(s)
 }
 
 /// How far inside an arc of radius `length` about the origin, from direction `from` to

@@ -49,6 +49,13 @@ fn a_sphere_placed_inside_another_is_pushed_out_not_flung() {
     let gap = (b.position() - a.position()).length() - 2.0 * RADIUS;
     assert!(gap > -1e-3, "still {:e} m inside", -gap);
     assert!(b.velocity().length() < 1e-3, "{:?}", b.velocity());
+    // On the line they started on (every push and weight is along it), one on the other on
+    // the dome's top: within a tenth of a millimetre of touching each (the creep allowance).
+    for (body, y) in [(a, 0.5), (b, 1.5)] {
+        let p = body.position();
+        assert!(p.x.abs() < 1e-12 && p.z.abs() < 1e-12, "{p}");
+        assert!((p.y - y).abs() < 1e-4, "{p}");
+    }
 }
 
 #[test]

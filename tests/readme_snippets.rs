@@ -28,8 +28,28 @@ fn the_plugin_snippet_runs_and_the_ball_falls() {
         .expect("one ball")
         .translation
         .y;
-    // Free fall for about half a second: some 1.2 m (the first frames run no fixed step).
-    assert!((0.5..1.5).contains(&(2.0 - y)), "the ball fell: y = {y}");
+    // Free fall for about half a second (the first frames run no fixed step): n steps of h
+    // by semi-implicit Euler from rest take the ball down g·h²·n(n+1)/2, to rounding.
+    let diagnostics = app.world().resource::<SpherePhysicsDiagnostics>();
+    let (n, h) = (
+        diagnostics.steps as f64,
+        diagnostics.time / diagnostics.steps as f64,
+    );
+    assert!(n >= 20.0, "{n} steps in half a second");
+    let fallen = |n: f64| 9.81 * h * h * n * (n + 1.0) / 2.0;
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    let exact = physics.world.bodies()[0].position().y;
+    assert!(
+        (exact - (2.0 - fallen(n))).abs() < 1e-9,
+        "the ball at {exact} after {n} steps of {h} s, not {}",
+        2.0 - fallen(n)
+    );
+    // What is drawn lies between the last two steps' positions (interpolated), in f32.
+    let (low, high) = (2.0 - fallen(n), 2.0 - fallen(n - 1.0));
+    assert!(
+        (low - 1e-5..=high + 1e-5).contains(&f64::from(y)),
+        "drawn at {y}, between {low} and {high}"
+    );
 }
 
 #[cfg(feature = "render")]

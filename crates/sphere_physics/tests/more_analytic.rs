@@ -161,6 +161,19 @@ fn bisection_converges_to_exact_in_a_world() {
     // the exact one by O(2^-n): measured 1.6e-4 to 2.3e-4 times 2^-n for these n (the bound
     // has a margin of 2).
     let exact = run(ToiMethod::Exact);
+    // The exact answer, worked out: the pair touches when |d + w t| = 1 (d the centres'
+    // offset, w the relative velocity), and the elastic impact takes from the first sphere
+    // 2·(3/4) of its velocity along the normal (masses 1 : 3, the second at rest).
+    let (d, w, v) = (
+        DVec3::new(1.9, 0.3, 0.0),
+        DVec3::new(-1.3, -0.2, 0.0),
+        DVec3::new(1.3, 0.2, 0.0),
+    );
+    let (qa, qb, qc) = (w.length_squared(), d.dot(w), d.length_squared() - 1.0);
+    let t = (-qb - (qb * qb - qa * qc).sqrt()) / qa;
+    let normal = d + w * t;
+    let want = v - 1.5 * v.dot(normal) * normal;
+    assert!((exact - want).length() <= 1e-12, "{exact} vs {want}");
     for n in [2, 6, 12, 20] {
         let err = (run(ToiMethod::Bisection { max_iterations: n }) - exact).length();
         let bound = 5e-4 / f64::from(1u32 << n);

@@ -44,6 +44,7 @@ use crate::{
     Body, Collision, ExactToi, Integrator, Settings, StepProfile, StepStats, Tether, TimeOfImpact,
 };
 
+mod fallback;
 mod glance;
 mod impacts;
 mod requery;

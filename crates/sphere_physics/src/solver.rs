@@ -55,7 +55,7 @@ mod strings;
 use glance::{
     Apart, FirstPass, Glance, Relative, Side, cannot_touch_by, first_pass_kept, kept_by_glances,
 };
-use strings::{STRUNG_OVERLAP, Strung, bend, taut};
+use strings::{STRUNG_OVERLAP, Strung, at_length, bend, taut};
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
 /// Only what pair tests read, in one cache line, so the event loop's random reads stay small;
@@ -774,7 +774,7 @@ impl Solver {
             if let Some(tether) = body.tether() {
                 let free_velocity = velocity;
                 let distance = (body.position() - tether.anchor).length();
-                let slack = distance < tether.length * (1.0 - 1e-9);
+                let slack = !at_length(distance, tether);
                 let (taut, sag, until);
                 (velocity, taut, sag, until) = bend(
                     body.position(),

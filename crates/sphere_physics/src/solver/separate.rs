@@ -21,7 +21,9 @@
 
 use glam::DVec3;
 
-use super::{MAX_CORRECTION, STRUNG_OVERLAP, Solver, StepContext, Strung, bit, contact_band};
+use super::{
+    MAX_CORRECTION, STRUNG_OVERLAP, Solver, StepContext, Strung, at_length, bit, contact_band,
+};
 use crate::Body;
 use crate::broad_phase::Aabb;
 
@@ -278,7 +280,7 @@ impl Solver {
                         // nearest point (no farther from where it was than the move asked).
                         let r = self.separate_at[k] - tether.anchor;
                         let distance = r.length();
-                        if distance >= tether.length * (1.0 - 1e-9) && distance > 0.0 {
+                        if at_length(distance, tether) && distance > 0.0 {
                             let outward = r / distance;
                             to = self.separate_at[k] + m - outward * m.dot(outward).max(0.0);
                         }
@@ -369,9 +371,7 @@ impl Solver {
         };
         let r = self.separate_at[k] - tether.anchor;
         let distance = r.length();
-        distance > 0.0
-            && distance >= tether.length * (1.0 - 1e-9)
-            && direction.dot(r / distance) > HELD_WITHIN
+        distance > 0.0 && at_length(distance, tether) && direction.dot(r / distance) > HELD_WITHIN
     }
 
     /// How far segment `k` may be moved apart from others in a step: [`MAX_CORRECTION`] of

@@ -201,7 +201,7 @@ impl Solver {
         let velocity;
         (segment.position, velocity) = taut(segment.position, segment.velocity, tether);
         let distance = (segment.position - tether.anchor).length();
-        self.strung[s].slack = distance < tether.length * (1.0 - 1e-9);
+        self.strung[s].slack = !at_length(distance, tether);
         self.clear_touched();
         self.set_velocity(k, velocity, t, ctx);
         self.touch(k as u32);
@@ -494,7 +494,7 @@ pub(super) fn chord(
 ) -> (DVec3, bool, f64) {
     let r = position - tether.anchor;
     if tau <= 0.0 {
-        return (velocity, r.length() >= tether.length * (1.0 - 1e-9), 0.0);
+        return (velocity, at_length(r.length(), tether), 0.0);
     }
     let q = r + velocity * tau;
     let (length, qq, rr) = (tether.length, q.length_squared(), r.length_squared());
@@ -578,6 +578,12 @@ pub(super) fn bend(
     }
 }
 
+/// Whether a sphere `distance` from its string's anchor is on the string: at its length, or
+/// past it, to within a relative 1e-9 (rounding); nearer, the string is slack.
+pub(super) fn at_length(distance: f64, tether: Tether) -> bool {
+    distance >= tether.length * (1.0 - 1e-9)
+}
+
 /// How long a sphere `r` from its string's anchor, moving at `velocity` in a straight line,
 /// takes to reach the string's `length` (0 if it is there or beyond; `None` if it never does,
 /// being at rest).
@@ -617,7 +623,7 @@ pub(super) fn arc_cut(from: DVec3, to: DVec3, length: f64) -> f64 {
 pub(super) fn taut(position: DVec3, velocity: DVec3, tether: Tether) -> (DVec3, DVec3) {
     let r = position - tether.anchor;
     let distance = r.length();
-    if distance == 0.0 || distance < tether.length * (1.0 - 1e-9) {
+    if distance == 0.0 || !at_length(distance, tether) {
         return (position, velocity);
     }
     let normal = r / distance;

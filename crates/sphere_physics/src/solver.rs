@@ -1548,6 +1548,12 @@ impl Solver {
 }
 
 impl Solver {
+    /// Forgets what the solver keeps from one step to the next by body index (which bodies
+    /// rested): a body was removed, and the indices after it moved down by one.
+    pub fn forget_indices(&mut self) {
+        self.rested.clear();
+    }
+
     /// The largest overlap between bodies (at least one dynamic), 0 if none.
     pub fn max_overlap(&mut self, bodies: &[Body]) -> f64 {
         self.boxes.clear();

@@ -301,6 +301,7 @@ impl World {
     /// Removes a body, returning it.
     pub fn remove_body(&mut self, id: BodyId) -> Option<Body> {
         let index = self.index(id).ok()?;
+        self.solver.forget_indices();
         Some(self.bodies.remove(index))
     }
 

@@ -3,7 +3,7 @@
 use bevy::app::{RunFixedMainLoop, RunFixedMainLoopSystems};
 use bevy::math::DVec3;
 use bevy::prelude::*;
-use sphere_physics::{IntegratorKind, Settings, ToiMethod, Tolerance, World};
+use sphere_physics::{IntegratorKind, Settings, Sleep, ToiMethod, Tolerance, World};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereRejected};
@@ -107,6 +107,14 @@ impl SpherePhysicsPlugin {
     /// Sets how many substeps each fixed step takes (0 is taken as 1).
     pub fn substeps(mut self, substeps: u32) -> Self {
         self.settings.substeps = substeps.max(1);
+        self
+    }
+
+    /// Lets spheres at rest fall asleep (off by default): see the core's
+    /// [`Settings::sleep`]. A sleeping sphere costs next to nothing, is still struck exactly,
+    /// and wakes when anything disturbs it, a change to its components included.
+    pub fn sleep(mut self, sleep: Sleep) -> Self {
+        self.settings.sleep = Some(sleep);
         self
     }
 

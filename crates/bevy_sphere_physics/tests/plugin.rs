@@ -1187,3 +1187,60 @@ fn spheres_spawned_overlapping_on_a_floor_move_apart_and_rest() {
         );
     }
 }
+
+/// A floor (a fixed sphere of radius 1e4 whose top is at y = 0) and a ball of radius 0.5
+/// resting on it, under Earth gravity.
+fn ball_on_a_floor(app: &mut App) -> (Entity, Entity) {
+    let floor = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(1.0e4),
+            SpherePosition(DVec3::new(0.0, -1.0e4, 0.0)),
+            FixedSphere,
+        ))
+        .id();
+    (floor, ball(app, DVec3::new(0.0, 0.5, 0.0), DVec3::ZERO))
+}
+
+/// Despawning a sphere that another rested on panicked at the next step (the core kept which
+/// bodies rested by index; see the core's `regression_removing_a_body_under_load.rs`).
+#[test]
+fn regression_despawning_the_floor_under_a_resting_ball() {
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * 9.81));
+    let (floor, ball) = ball_on_a_floor(&mut app);
+    run_steps(&mut app, 10);
+    assert!(velocity(&app, ball).length() < 1e-9, "at rest on the floor");
+    app.world_mut().despawn(floor);
+    run_steps(&mut app, 5);
+    // Falling freely from rest, semi-implicit Euler: after 5 steps at 9.81 · 5 · dt.
+    let dt = STEP.as_secs_f64();
+    let v = velocity(&app, ball);
+    assert!((v.y + 9.81 * 5.0 * dt).abs() < 1e-9, "{v}");
+}
+
+#[test]
+fn a_sphere_at_rest_falls_asleep_and_a_game_wakes_it() {
+    let plugin = SpherePhysicsPlugin::default()
+        .gravity(DVec3::NEG_Y * 9.81)
+        .restitution(0.5)
+        .sleep(sphere_physics::Sleep::default());
+    let mut app = app(plugin);
+    let (_, ball) = ball_on_a_floor(&mut app);
+    let asleep = |app: &App| {
+        let diagnostics = app.world().resource::<SpherePhysicsDiagnostics>();
+        diagnostics.last.asleep
+    };
+    // Calm for a second (64 steps), checked four times a second.
+    run_steps(&mut app, 90);
+    assert_eq!(asleep(&app), 1);
+    let at = position(&app, ball);
+    run_steps(&mut app, 60);
+    assert_eq!(position(&app, ball), at, "asleep, it does not move");
+    // A game system pushes it along the floor: it wakes and slides at 1 m/s.
+    app.world_mut().get_mut::<SphereVelocity>(ball).unwrap().0 = DVec3::X;
+    run_steps(&mut app, 1);
+    assert_eq!(asleep(&app), 0);
+    let dt = STEP.as_secs_f64();
+    let moved = position(&app, ball) - at;
+    assert!((moved.x - dt).abs() < 1e-6, "{moved}");
+}

@@ -43,6 +43,9 @@ pub struct Measurement {
     pub phases: Option<StepProfile>,
     /// Each timed step of our engine, in order (empty for rapier).
     pub per_step: Vec<StepRecord>,
+    /// Dynamic bodies asleep after the last step (ours with `Settings::sleep` on; rapier's
+    /// sleeping is on by default).
+    pub asleep: usize,
 }
 
 /// What one timed step of our engine did, and how long it took.
@@ -158,6 +161,7 @@ pub fn measure_ours(
         deferred,
         phases,
         per_step,
+        asleep: world.bodies().iter().filter(|b| b.is_asleep()).count(),
     }
 }
 
@@ -230,6 +234,7 @@ pub fn measure_rapier(
         deferred: 0,
         phases: None,
         per_step: Vec::new(),
+        asleep: world.asleep(),
     }
 }
 

@@ -3,7 +3,7 @@
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
 //!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases]
-//!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]
+//!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step; with
 //! `--settle N`, N times: the pile's bed at rest, say, rather than its landing), then times
@@ -25,10 +25,15 @@
 //! 0.1, the spheres' diameter: 1.0, rapier's default for metres, made it 2.3x to 2.7x
 //! slower here) can be changed to look for its fastest setting, and `--rapier-flat-walls`
 //! gives rapier the gas's six wall spheres as half-spaces, its own shape for a wall.
+//!
+//! rapier's bodies fall asleep at rest (its default); ours do with `--sleep` (sleeping is off
+//! by default in our engine; `--sleep` turns on `Settings::sleep` with `Sleep::default()`),
+//! and a last table then gives how many of each engine's spheres are asleep after the run.
 
 use std::io::Write;
 
 use sphere_bench::{Measurement, measure_ours, scenes};
+use sphere_physics::Sleep;
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -51,6 +56,8 @@ struct Options {
     /// The gas's walls as rapier half-spaces.
     #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
     rapier_flat_walls: bool,
+    /// Our engine with sleeping on (`Sleep::default()`), as rapier's is by default.
+    sleep: bool,
 }
 
 /// `value` as a positive integer, or an error naming `flag`.
@@ -77,6 +84,7 @@ fn parse() -> Result<Options, String> {
         rapier_iterations: 4,
         rapier_length_unit: 2.0 * scenes::RADIUS,
         rapier_flat_walls: false,
+        sleep: false,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut it = args.iter();
@@ -113,9 +121,10 @@ fn parse() -> Result<Options, String> {
                     .ok_or("--rapier-length-unit needs a positive number")?
             }
             "--rapier-flat-walls" => options.rapier_flat_walls = true,
+            "--sleep" => options.sleep = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep]"
                 );
                 std::process::exit(0);
             }
@@ -188,9 +197,10 @@ fn main() {
     }
     let mut phase_rows = Vec::new();
     let mut step_rows = Vec::new();
+    let mut asleep_rows = Vec::new();
     for scene_name in &options.scenes {
         for &n in &options.sizes {
-            let scene = match scene_name.as_str() {
+            let mut scene = match scene_name.as_str() {
                 "shower" => scenes::shower(n, 1),
                 "showers" => scenes::showers(n, 1),
                 "apart" => scenes::apart(n, 1),
@@ -198,6 +208,8 @@ fn main() {
                 "pile" => scenes::pile(n, 1),
                 _ => scenes::gas(n, 1),
             };
+            // Read by our engine only: rapier's sleeping is always on.
+            scene.sleep = options.sleep.then(Sleep::default);
             let mut ours = None;
             #[cfg(feature = "rapier")]
             let (mut ccd, mut plain) = (None, None);
@@ -234,6 +246,7 @@ fn main() {
             if options.per_step {
                 step_rows.extend(step_table_rows(scene_name, n, &ours));
             }
+            let asleep = format!("| {scene_name} | {n} | {}", ours.asleep);
             if ours.deferred > 0 {
                 eprintln!(
                     "sphere-bench: warning: {scene_name} {n}: {} collisions deferred to later \
@@ -263,6 +276,7 @@ fn main() {
             #[cfg(feature = "rapier")]
             {
                 let (ccd, plain) = (ccd.expect("one run"), plain.expect("one run"));
+                asleep_rows.push(format!("{asleep} / {} / {} |", ccd.asleep, plain.asleep));
                 println!(
                     "| {scene_name} | {n} | {} | {} | {} | {} | {} | {} | {} / {} | {} / {} / {} | {} | {} / {} / {} |",
                     cell(&ours),
@@ -283,6 +297,7 @@ fn main() {
                 );
             }
             if !rapier {
+                asleep_rows.push(format!("{asleep} |"));
                 println!(
                     "| {scene_name} | {n} | {} | {:.0} | {} | {:.2e} | {} | {} |",
                     cell(&ours),
@@ -294,6 +309,17 @@ fn main() {
                 );
             }
             let _ = std::io::stdout().flush();
+        }
+    }
+    if options.sleep {
+        println!("\nSpheres asleep after the last step (ours with `--sleep`; rapier's always):\n");
+        println!(
+            "| scene | N | asleep: ours{} |",
+            if rapier { " / CCD / no CCD" } else { "" }
+        );
+        println!("|---|---|---|");
+        for row in asleep_rows {
+            println!("{row}");
         }
     }
     if !phase_rows.is_empty() {

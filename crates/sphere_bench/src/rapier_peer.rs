@@ -250,6 +250,15 @@ impl RapierWorld {
             .collect()
     }
 
+    /// Dynamic bodies asleep (rapier's sleeping is on, as by default).
+    pub fn asleep(&self) -> usize {
+        self.handles
+            .iter()
+            .map(|&h| &self.bodies[h])
+            .filter(|body| body.is_dynamic() && body.is_sleeping())
+            .count()
+    }
+
     /// Translational kinetic energy `Σ ½ m v²` of the dynamic bodies, with rapier's masses.
     pub fn kinetic_energy(&self) -> f64 {
         self.handles

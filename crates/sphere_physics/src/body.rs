@@ -311,6 +311,14 @@ pub struct Body {
     pub(crate) id: BodyId,
     pub(crate) desc: SphereDesc,
     pub(crate) inverse_mass: f64,
+    /// Asleep (see [`Settings::sleep`](crate::Settings::sleep)): at rest, no force acting.
+    pub(crate) asleep: bool,
+    /// While awake, how long its speed has stayed below the sleeping speed (seconds).
+    pub(crate) calm: f64,
+    /// While asleep, the group it fell asleep with (woken together).
+    pub(crate) island: u64,
+    /// While asleep, where it fell asleep: moved from there, it wakes.
+    pub(crate) rest: DVec3,
 }
 
 impl Body {
@@ -324,6 +332,10 @@ impl Body {
             id,
             desc,
             inverse_mass,
+            asleep: false,
+            calm: 0.0,
+            island: 0,
+            rest: DVec3::ZERO,
         }
     }
 
@@ -374,6 +386,11 @@ impl Body {
     /// Whether the body is fixed (infinite mass).
     pub fn is_fixed(&self) -> bool {
         self.desc.fixed
+    }
+    /// Whether the body is asleep: at rest with every body it touches, neither stepped nor
+    /// acted on until something wakes it (see [`Settings::sleep`](crate::Settings::sleep)).
+    pub fn is_asleep(&self) -> bool {
+        self.asleep
     }
     /// The string the body hangs on, if any (never for fixed bodies).
     pub fn tether(&self) -> Option<Tether> {

@@ -23,6 +23,7 @@
 //! - [`stats`]: what a step did ([`StepStats`], [`Collision`], [`StepProfile`]);
 //! - [`tolerance`]: the [`Tolerance`] of every equality test;
 //! - [`scene`]: scene files ([`SceneDesc`]);
+//! - [`sleep`]: bodies at rest falling asleep ([`Sleep`]);
 //! - [`generate`]: seeded generators of many spheres ([`generate::Generator`]).
 //!
 //! ```
@@ -52,6 +53,7 @@ pub mod integrator;
 mod queue;
 pub mod response;
 pub mod scene;
+pub mod sleep;
 mod solver;
 pub mod stats;
 pub mod toi;
@@ -64,6 +66,7 @@ pub use glam;
 pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};
 pub use response::{CombineRule, GroupContact, Resolution, resolve, resolve_simultaneous};
 pub use scene::{SceneDesc, SceneError, SphereSpec};
+pub use sleep::Sleep;
 pub use stats::{Collision, StepProfile, StepStats};
 pub use toi::{Bisection, ExactToi, TimeOfImpact, ToiMethod, ToiOutcome};
 pub use tolerance::Tolerance;

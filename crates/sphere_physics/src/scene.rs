@@ -26,7 +26,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::generate::{GenerateError, Generator};
 use crate::{
-    BodyError, IntegratorKind, Settings, SphereDesc, Tether, ToiMethod, World, WorldError,
+    BodyError, IntegratorKind, Settings, Sleep, SphereDesc, Tether, ToiMethod, World, WorldError,
 };
 
 fn one() -> f64 {
@@ -60,6 +60,10 @@ pub struct SceneDesc {
     /// Substeps per step (default 1; see [`Settings::substeps`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub substeps: Option<u32>,
+    /// Sleeping (default off; `sleep: ()` for [`Sleep`]'s defaults, or
+    /// `sleep: (speed: 0.1, time: 2.0)`; see [`Settings::sleep`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sleep: Option<Sleep>,
     /// The spheres; their order is their body ids' order.
     #[serde(default)]
     pub spheres: Vec<SphereSpec>,
@@ -232,6 +236,7 @@ impl SceneDesc {
             method: self.method.unwrap_or_default(),
             integrator: self.integrator.unwrap_or_default(),
             substeps: self.substeps.unwrap_or(1),
+            sleep: self.sleep,
             ..Settings::default()
         };
         // The limits every world checks (substeps, bisection iterations), said at load time.

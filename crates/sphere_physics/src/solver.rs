@@ -760,6 +760,11 @@ impl Solver {
         for (index, body) in bodies.iter().enumerate() {
             let (acceleration, kicks) = if body.is_fixed() {
                 (DVec3::ZERO, Default::default())
+            } else if body.asleep {
+                // Asleep: at rest, and nothing acts on it until something wakes it (see
+                // `Settings::sleep`); it still has its mass in every impact.
+                dynamic += 1;
+                (DVec3::ZERO, Default::default())
             } else {
                 dynamic += 1;
                 let a = settings.gravity + body.force() * body.inverse_mass();
@@ -1584,6 +1589,36 @@ impl Solver {
         });
         self.pairs = pairs;
         worst
+    }
+
+    /// Calls `f(i, j)` (indices into `bodies`, `i != j`, each pair once, in an order fixed by
+    /// the bodies) for every pair whose boxes, each grown by `margin(body)`, meet.
+    pub fn pairs_near(
+        &mut self,
+        bodies: &[Body],
+        margin: impl Fn(&Body) -> f64,
+        mut f: impl FnMut(usize, usize),
+    ) {
+        self.boxes.clear();
+        self.boxes.extend(
+            bodies
+                .iter()
+                .map(|b| Aabb::swept(b.position(), b.position(), b.radius(), margin(b))),
+        );
+        self.order.clear();
+        match self.broad.sort(&self.boxes) {
+            Some(permutation) => self.order.extend_from_slice(permutation),
+            None => self.order.extend(0..bodies.len() as u32),
+        }
+        self.scratch_boxes.clear();
+        self.scratch_boxes
+            .extend(self.order.iter().map(|&i| self.boxes[i as usize]));
+        self.broad.build(&self.scratch_boxes);
+        let mut pairs = std::mem::take(&mut self.pairs);
+        self.broad.pairs(&self.scratch_boxes, &mut pairs, |i, j| {
+            f(self.order[i] as usize, self.order[j] as usize);
+        });
+        self.pairs = pairs;
     }
 }
 

@@ -56,6 +56,8 @@ pub struct StepStats {
     /// on a string left more than 2% of a radius deep: see
     /// [`World::step`](crate::World::step). Summed over the step's substeps.
     pub separated: u32,
+    /// Bodies asleep at the end of the step (see [`Settings::sleep`](crate::Settings::sleep)).
+    pub asleep: u32,
 }
 
 impl StepStats {

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::body::Field;
 use crate::contact::{ContactKind, Kinematics, classify};
+use crate::sleep::{Sleep, Sleeper};
 use crate::solver::{Solver, StepContext};
 use crate::{
     Body, BodyError, BodyId, Collision, CombineRule, Integrator, IntegratorKind, SphereDesc,
@@ -83,6 +84,25 @@ pub struct Settings {
     /// whose fallback solve costs more than the collisions it replaces (the 100k shower
     /// benchmark's worst step: 5.2 s at 4, 2.2 s at 16).
     pub max_collisions_per_body: u32,
+    /// Sleeping (off by default): `Some` lets bodies at rest fall asleep, so that a settled
+    /// pile costs next to nothing. A body is calm while its speed at each step's end stays
+    /// below [`Sleep::speed`]. A group of dynamic bodies touching one another (within
+    /// [`SLEEP_CONTACT`](crate::sleep::SLEEP_CONTACT) of the smaller radius) falls asleep
+    /// together once every one of them has stayed calm for [`Sleep::time`] (checked a few
+    /// times in that time), provided it rests on a fixed sphere that does not move, none of
+    /// them hangs on a string and none touches a fixed sphere that moves: a body drifting
+    /// slowly through space never falls asleep. Falling asleep sets the bodies' velocities to
+    /// zero (the one change sleeping makes to the motion). An asleep body is not accelerated
+    /// (neither gravity nor its force acts on it: its neighbours' support is what it no longer
+    /// needs) but is still a sphere of its mass, so whatever strikes it is answered exactly.
+    /// It wakes, with its whole group, after a step that moved it or gave it any speed (an
+    /// impact, or a body coming to rest on it), when it is changed or removed through the
+    /// world ([`World::set_desc`], [`World::set_velocity`], [`World::set_position`],
+    /// [`World::set_force`], [`World::remove_body`], or [`World::wake`]), when a fixed sphere
+    /// touching it is added, changed or removed, and when gravity changes or sleeping is
+    /// turned off. A world whose dynamic bodies are all asleep, with no fixed body moving,
+    /// takes its steps without work. [`Body::is_asleep`] and [`StepStats::asleep`] tell.
+    pub sleep: Option<Sleep>,
 }
 
 impl Default for Settings {
@@ -97,6 +117,7 @@ impl Default for Settings {
             creep_fraction: 0.01,
             substeps: 1,
             max_collisions_per_body: 16,
+            sleep: None,
         }
     }
 }
@@ -115,8 +136,9 @@ impl Settings {
     /// Checks every field (the fields are public, and settings also come from files): gravity
     /// finite, tolerance finite in `[0, 0.5)`, `resting_factor` finite and `>= 0`,
     /// `creep_fraction` in `[0, 1]`, `substeps` from 1 to [`MAX_SUBSTEPS`],
-    /// `max_collisions_per_body` from 1 to [`MAX_COLLISIONS_PER_BODY`], and bisection at most [`MAX_BISECTION_ITERATIONS`]
-    /// iterations. [`World::step`] checks them first and changes nothing if one is wrong.
+    /// `max_collisions_per_body` from 1 to [`MAX_COLLISIONS_PER_BODY`], bisection at most
+    /// [`MAX_BISECTION_ITERATIONS`] iterations, and the sleeping speed and time finite and
+    /// `>= 0`. [`World::step`] checks them first and changes nothing if one is wrong.
     pub fn validate(&self) -> Result<(), WorldError> {
         let bad = |field, value: String, reason| {
             Err(WorldError::InvalidSetting {
@@ -157,6 +179,16 @@ impl Settings {
         if self.max_collisions_per_body > MAX_COLLISIONS_PER_BODY {
             let value = format!("{}", self.max_collisions_per_body);
             return bad("max_collisions_per_body", value, "must be at most 65536");
+        }
+        if let Some(sleep) = self.sleep {
+            if !(sleep.speed.is_finite() && sleep.speed >= 0.0) {
+                let value = format!("{}", sleep.speed);
+                return bad("sleep.speed", value, "must be finite and >= 0");
+            }
+            if !(sleep.time.is_finite() && sleep.time >= 0.0) {
+                let value = format!("{}", sleep.time);
+                return bad("sleep.time", value, "must be finite and >= 0");
+            }
         }
         if let ToiMethod::Bisection { max_iterations } = self.method
             && max_iterations > MAX_BISECTION_ITERATIONS
@@ -245,6 +277,8 @@ pub struct World {
     /// Every body's position and velocity before a step of several substeps: a later
     /// substep that is refused puts them back (kept to reuse its buffer).
     rollback: Vec<(DVec3, DVec3)>,
+    /// Who sleeps, and the buffers that decide it.
+    sleeper: Sleeper,
 }
 
 impl World {
@@ -295,14 +329,37 @@ impl World {
         desc.validate(|| label(desc.name.as_deref(), id))?;
         self.next_id += 1;
         self.bodies.push(Body::new(id, desc));
+        self.woken_by(self.bodies.len() - 1);
         Ok(id)
     }
 
-    /// Removes a body, returning it.
+    /// Removes a body, returning it (waking what rests on it: see [`Settings::sleep`]).
     pub fn remove_body(&mut self, id: BodyId) -> Option<Body> {
         let index = self.index(id).ok()?;
         self.solver.forget_indices();
+        self.woken_by(index);
         Some(self.bodies.remove(index))
+    }
+
+    /// Wakes a body and every body asleep with it (see [`Settings::sleep`]); nothing if it is
+    /// awake.
+    pub fn wake(&mut self, id: BodyId) -> Result<(), WorldError> {
+        let index = self.index(id)?;
+        self.sleeper.wake_island_of(&mut self.bodies, index);
+        Ok(())
+    }
+
+    /// Wakes what a change to the body at `index` (added, changed or about to be removed)
+    /// disturbs: its own island, or for a fixed body the islands touching it.
+    fn woken_by(&mut self, index: usize) {
+        self.sleeper.disturbed();
+        let body = &self.bodies[index];
+        if body.is_fixed() {
+            let (centre, radius) = (body.position(), body.radius());
+            self.sleeper.wake_around(&mut self.bodies, centre, radius);
+        } else {
+            self.sleeper.wake_island_of(&mut self.bodies, index);
+        }
     }
 
     /// The body with this id.
@@ -330,7 +387,9 @@ impl World {
         let index = self.index(id)?;
         desc.validate(|| label(desc.name.as_deref(), id))
             .map_err(|e| BodyError { id: Some(id), ..e })?;
+        self.woken_by(index);
         self.bodies[index] = Body::new(id, desc);
+        self.woken_by(index);
         Ok(())
     }
 
@@ -377,6 +436,12 @@ impl World {
             *slot(&mut body.desc) = previous;
             return Err(BodyError { id: Some(id), ..e }.into());
         }
+        if body.is_fixed() && field == Field::Position {
+            // What touched it where it was (and, below, what touches it where it is).
+            let radius = body.radius();
+            self.sleeper.wake_around(&mut self.bodies, previous, radius);
+        }
+        self.woken_by(index);
         Ok(())
     }
 
@@ -459,6 +524,11 @@ impl World {
                 reason: "must leave each substep of this time step a normal number",
             });
         }
+        let (sleep, gravity) = (self.settings.sleep, self.settings.gravity);
+        if self.sleeper.before_step(&mut self.bodies, sleep, gravity) {
+            self.quiet_step(dt);
+            return Ok(&self.stats);
+        }
         self.solver.collisions.clear();
         self.solver.profile = StepProfile::default();
         self.rollback.clear();
@@ -495,10 +565,39 @@ impl World {
         self.time += dt;
         std::mem::swap(&mut self.collisions, &mut self.solver.collisions);
         self.profile = self.solver.profile;
-        // The solver summed the energies and momentum as it wrote the bodies back.
+        if let Some(sleep) = sleep {
+            // The solver summed the energies and momentum as it wrote the bodies back: take
+            // off what the bodies falling asleep had.
+            let (kinetic, momentum) =
+                self.sleeper
+                    .after_step(&mut self.bodies, &mut self.solver, sleep, dt, self.time);
+            stats.kinetic_energy -= kinetic;
+            stats.momentum -= momentum;
+            stats.asleep = self.bodies.iter().filter(|b| b.asleep).count() as u32;
+        }
         stats.time = self.time;
         self.stats = stats;
         Ok(&self.stats)
+    }
+
+    /// A step with every dynamic body asleep and no fixed one moving, and nothing changed
+    /// since the last step: nothing moves, and the last step's energies and overlap stand.
+    fn quiet_step(&mut self, dt: f64) {
+        self.steps += 1;
+        self.time += dt;
+        self.collisions.clear();
+        if self.solver.profiling {
+            self.profile = StepProfile::default();
+        }
+        let last = self.stats;
+        self.stats = StepStats {
+            time: self.time,
+            dt,
+            potential_energy: last.potential_energy,
+            max_overlap: last.max_overlap,
+            asleep: last.asleep,
+            ..Default::default()
+        };
     }
 
     /// Kinetic energy of the dynamic bodies.

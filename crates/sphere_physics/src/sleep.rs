@@ -1,0 +1,299 @@
+//! Sleeping: a group of touching bodies at rest on a fixed sphere stops being stepped until
+//! something wakes it (see [`Settings::sleep`](crate::Settings::sleep)).
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::Body;
+use crate::solver::Solver;
+
+/// How near two spheres must be to count as touching when bodies are grouped to fall asleep
+/// together, or woken by a fixed sphere changed near them: this fraction of the smaller radius
+/// apart (or closer).
+pub const SLEEP_CONTACT: f64 = 0.05;
+
+/// When bodies fall asleep: see [`Settings::sleep`](crate::Settings::sleep).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Sleep {
+    /// A body is calm while its speed at the end of each step stays below this (default 0.2,
+    /// in the world's units of length per second: a little more than what Earth's gravity
+    /// gives in a step of 1/60 s, the scale at which a large bed of frictionless spheres
+    /// jiggles; at 0.1 a bed of 10 000 had not fallen asleep after 24 s).
+    pub speed: f64,
+    /// How long every body of a group must have stayed calm for the group to fall asleep
+    /// (default 1 s).
+    pub time: f64,
+}
+
+impl Default for Sleep {
+    fn default() -> Self {
+        Sleep {
+            speed: 0.2,
+            time: 1.0,
+        }
+    }
+}
+
+/// A body's flags while groups are formed.
+const GROUNDED: u8 = 1;
+const BLOCKED: u8 = 2;
+const AWAKE: u8 = 4;
+
+/// The world's sleeping state between steps, and its buffers.
+#[derive(Debug, Default)]
+pub(crate) struct Sleeper {
+    /// Union-find over body indices: the groups of touching dynamic bodies.
+    parent: Vec<u32>,
+    /// Per body, then per group (at its root): `GROUNDED`, `BLOCKED`, `AWAKE`.
+    flags: Vec<u8>,
+    /// Per group (at its root), the island it falls asleep as (0: not yet given one).
+    new_island: Vec<u64>,
+    /// The last island given out.
+    last_island: u64,
+    /// Islands to wake.
+    wake: Vec<u64>,
+    /// The gravity of the last step taken with sleeping on: a change wakes every body.
+    gravity: Option<DVec3>,
+    /// The earliest time at which groups are formed again.
+    next_check: f64,
+    /// Every dynamic body asleep and no fixed one moving since the last step, and nothing
+    /// changed since through the world: the next step has nothing to do.
+    quiet: bool,
+}
+
+impl Sleeper {
+    /// Before a step: wakes every body if sleeping is off or gravity changed. Returns whether
+    /// the step has nothing to do (see `quiet`).
+    pub fn before_step(
+        &mut self,
+        bodies: &mut [Body],
+        sleep: Option<Sleep>,
+        gravity: DVec3,
+    ) -> bool {
+        if sleep.is_none() {
+            // Turned off (nothing can be asleep if it was never on: no scan then).
+            if self.gravity.take().is_some() {
+                wake_all(bodies);
+                self.quiet = false;
+            }
+            return false;
+        }
+        if self.gravity != Some(gravity) {
+            wake_all(bodies);
+            self.quiet = false;
+            self.gravity = Some(gravity);
+        }
+        self.quiet
+    }
+
+    /// Something was changed through the world (a body added, removed or changed): the next
+    /// step is not quiet.
+    pub fn disturbed(&mut self) {
+        self.quiet = false;
+    }
+
+    /// After a step of `dt` ending at `now`: wakes the islands of sleeping bodies the step
+    /// moved or gave a speed, times each awake body's calm, and puts to sleep each group of
+    /// touching bodies that has stayed calm long enough and rests on a still fixed sphere.
+    /// Returns the kinetic energy and momentum the bodies falling asleep had.
+    pub fn after_step(
+        &mut self,
+        bodies: &mut [Body],
+        solver: &mut Solver,
+        sleep: Sleep,
+        dt: f64,
+        now: f64,
+    ) -> (f64, DVec3) {
+        self.wake.clear();
+        let mut ready = false;
+        let mut moving = false;
+        for body in bodies.iter_mut() {
+            if body.is_fixed() {
+                moving |= body.desc.velocity != DVec3::ZERO;
+            } else if body.asleep {
+                if body.desc.velocity != DVec3::ZERO || body.desc.position != body.rest {
+                    self.wake.push(body.island);
+                }
+            } else if body.tether().is_none() && body.desc.velocity.length() < sleep.speed {
+                body.calm += dt;
+                ready |= body.calm >= sleep.time;
+            } else {
+                body.calm = 0.0;
+            }
+        }
+        self.wake_islands(bodies);
+        let taken = if ready && now >= self.next_check {
+            // Forming the groups reads every body: done at most four times per `sleep.time`
+            // (a group may fall asleep up to a quarter of it late).
+            self.next_check = now + sleep.time / 4.0;
+            self.fall_asleep(bodies, solver, sleep)
+        } else {
+            (0.0, DVec3::ZERO)
+        };
+        self.quiet = !moving
+            && bodies.iter().any(|b| b.asleep)
+            && bodies.iter().all(|b| b.is_fixed() || b.asleep);
+        taken
+    }
+
+    /// Wakes the islands in `self.wake`.
+    fn wake_islands(&mut self, bodies: &mut [Body]) {
+        if self.wake.is_empty() {
+            return;
+        }
+        self.quiet = false;
+        self.wake.sort_unstable();
+        self.wake.dedup();
+        for body in bodies.iter_mut() {
+            if body.asleep && self.wake.binary_search(&body.island).is_ok() {
+                wake(body);
+            }
+        }
+        self.wake.clear();
+    }
+
+    /// Wakes the island of `body`, if it is asleep.
+    pub fn wake_island_of(&mut self, bodies: &mut [Body], index: usize) {
+        if bodies[index].asleep {
+            self.wake.push(bodies[index].island);
+            self.wake_islands(bodies);
+        }
+    }
+
+    /// Wakes the islands of the sleeping bodies touching (see [`SLEEP_CONTACT`]) a sphere of
+    /// `radius` at `centre`: a fixed sphere added, removed or changed there.
+    pub fn wake_around(&mut self, bodies: &mut [Body], centre: DVec3, radius: f64) {
+        self.wake.extend(
+            bodies
+                .iter()
+                .filter(|b| b.asleep && gap(b, centre, radius) <= SLEEP_CONTACT * b.radius())
+                .map(|b| b.island),
+        );
+        self.wake_islands(bodies);
+    }
+
+    /// Puts to sleep each group of touching dynamic bodies that is ready: every body asleep
+    /// or calm for `sleep.time` (none on a string), one at least awake, one at least touching
+    /// a fixed sphere that does not move, and none touching one that does.
+    fn fall_asleep(
+        &mut self,
+        bodies: &mut [Body],
+        solver: &mut Solver,
+        sleep: Sleep,
+    ) -> (f64, DVec3) {
+        let n = bodies.len();
+        self.parent.clear();
+        self.parent.extend(0..n as u32);
+        self.flags.clear();
+        self.flags.resize(n, 0);
+        let (parent, flags) = (&mut self.parent, &mut self.flags);
+        let view: &[Body] = bodies;
+        solver.pairs_near(
+            view,
+            |b| SLEEP_CONTACT * b.radius(),
+            |i, j| {
+                let (a, b) = (&view[i], &view[j]);
+                let near = SLEEP_CONTACT * a.radius().min(b.radius());
+                if gap(a, b.position(), b.radius()) > near {
+                    return;
+                }
+                match (a.is_fixed(), b.is_fixed()) {
+                    (false, false) => union(parent, i, j),
+                    (true, false) => {
+                        flags[j] |= if a.velocity() == DVec3::ZERO {
+                            GROUNDED
+                        } else {
+                            BLOCKED
+                        }
+                    }
+                    (false, true) => {
+                        flags[i] |= if b.velocity() == DVec3::ZERO {
+                            GROUNDED
+                        } else {
+                            BLOCKED
+                        }
+                    }
+                    (true, true) => {}
+                }
+            },
+        );
+        // Each group's flags gathered at its root, a body not ready blocking it. A group's
+        // root is its smallest index (see `union`), so it is met before its other bodies.
+        for (i, body) in bodies.iter().enumerate() {
+            if body.is_fixed() {
+                continue;
+            }
+            let mut own = self.flags[i];
+            if !body.asleep {
+                own |= AWAKE;
+                if body.calm < sleep.time {
+                    own |= BLOCKED;
+                }
+            }
+            let root = find(&mut self.parent, i);
+            if root != i {
+                self.flags[root] |= own;
+            } else {
+                self.flags[i] = own;
+            }
+        }
+        self.new_island.clear();
+        self.new_island.resize(n, 0);
+        let (mut kinetic, mut momentum) = (0.0, DVec3::ZERO);
+        for (i, body) in bodies.iter_mut().enumerate() {
+            if body.is_fixed() {
+                continue;
+            }
+            let root = find(&mut self.parent, i);
+            if self.flags[root] != GROUNDED | AWAKE {
+                continue;
+            }
+            if self.new_island[root] == 0 {
+                self.last_island += 1;
+                self.new_island[root] = self.last_island;
+            }
+            kinetic += body.kinetic_energy();
+            momentum += body.momentum();
+            body.asleep = true;
+            body.island = self.new_island[root];
+            body.desc.velocity = DVec3::ZERO;
+            body.rest = body.desc.position;
+            body.calm = 0.0;
+        }
+        (kinetic, momentum)
+    }
+}
+
+/// Wakes every body.
+pub(crate) fn wake_all(bodies: &mut [Body]) {
+    for body in bodies.iter_mut().filter(|b| b.asleep) {
+        wake(body);
+    }
+}
+
+fn wake(body: &mut Body) {
+    body.asleep = false;
+    body.calm = 0.0;
+}
+
+/// How far apart `body` and a sphere of `radius` at `centre` are (negative when they overlap).
+fn gap(body: &Body, centre: DVec3, radius: f64) -> f64 {
+    (body.position() - centre).length() - body.radius() - radius
+}
+
+fn find(parent: &mut [u32], mut i: usize) -> usize {
+    while parent[i] as usize != i {
+        let up = parent[parent[i] as usize];
+        parent[i] = up;
+        i = up as usize;
+    }
+    i
+}
+
+/// Joins the groups of `i` and `j`, the smaller root index becoming the root.
+fn union(parent: &mut [u32], i: usize, j: usize) {
+    let (a, b) = (find(parent, i), find(parent, j));
+    let (low, high) = (a.min(b), a.max(b));
+    parent[high] = low as u32;
+}

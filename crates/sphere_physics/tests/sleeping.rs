@@ -1,0 +1,372 @@
+//! Sleeping (`Settings::sleep`): bodies at rest on a fixed sphere fall asleep together, cost
+//! nothing while asleep, are struck exactly, and wake whenever something disturbs them.
+
+mod common;
+
+use sphere_physics::{
+    BodyId, SceneDesc, Settings, Sleep, SphereDesc, World, WorldError, glam::DVec3,
+};
+
+const DT: f64 = 1.0 / 60.0;
+const FLOOR: f64 = 1.0e4;
+
+/// A world under Earth gravity with sleeping on (default `Sleep`) and a floor whose top is at
+/// y = 0; returns the floor's id.
+fn world_with_floor() -> (World, BodyId) {
+    let settings = Settings {
+        sleep: Some(Sleep::default()),
+        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
+    };
+    let mut world = World::new(settings);
+    let floor = world
+        .add_sphere(
+            SphereDesc::new(FLOOR)
+                .at(DVec3::new(0.0, -FLOOR, 0.0))
+                .fixed(),
+        )
+        .unwrap();
+    (world, floor)
+}
+
+/// A ball of radius 0.5 and restitution 0.5 at (x, y, 0).
+fn ball_at(world: &mut World, x: f64, y: f64) -> BodyId {
+    world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(x, y, 0.0))
+                .with_restitution(0.5),
+        )
+        .unwrap()
+}
+
+fn asleep(world: &World, id: BodyId) -> bool {
+    world.body(id).unwrap().is_asleep()
+}
+
+/// Steps until `id` is asleep (at most `limit` steps); returns the steps taken.
+fn step_until_asleep(world: &mut World, id: BodyId, limit: u32) -> u32 {
+    for n in 1..=limit {
+        world.step(DT).unwrap();
+        if asleep(world, id) {
+            return n;
+        }
+    }
+    panic!("not asleep after {limit} steps");
+}
+
+#[test]
+fn off_by_default() {
+    assert_eq!(Settings::default().sleep, None);
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    world
+        .add_sphere(
+            SphereDesc::new(FLOOR)
+                .at(DVec3::new(0.0, -FLOOR, 0.0))
+                .fixed(),
+        )
+        .unwrap();
+    let ball = ball_at(&mut world, 0.0, 0.5);
+    for _ in 0..300 {
+        world.step(DT).unwrap();
+    }
+    assert!(!asleep(&world, ball));
+    assert_eq!(world.stats().asleep, 0);
+}
+
+#[test]
+fn a_ball_at_rest_on_the_floor_falls_asleep_and_its_steps_are_quiet() {
+    let (mut world, _) = world_with_floor();
+    let ball = ball_at(&mut world, 0.0, 0.5);
+    // Calm from the first step; groups are formed a quarter of `time` apart at most.
+    let steps = step_until_asleep(&mut world, ball, 120);
+    assert!((60..=80).contains(&steps), "asleep after {steps} steps");
+    let body = world.body(ball).unwrap().clone();
+    assert_eq!(body.velocity(), DVec3::ZERO);
+    assert_eq!(world.stats().asleep, 1);
+    assert_eq!(world.stats().kinetic_energy, 0.0);
+    assert_eq!(world.stats().momentum, DVec3::ZERO);
+    for _ in 0..600 {
+        let stats = *world.step(DT).unwrap();
+        assert_eq!(stats.collisions, 0);
+        assert_eq!(stats.asleep, 1);
+        assert_eq!(stats.kinetic_energy, 0.0);
+        assert_eq!(stats.potential_energy, world.potential_energy());
+    }
+    // Nothing moved, to the bit.
+    assert_eq!(world.body(ball).unwrap(), &body);
+}
+
+#[test]
+fn a_ball_struck_while_asleep_answers_as_if_awake() {
+    // Two equal elastic balls on the floor (a sphere of radius 1e4: frictionless, and its top
+    // a dome the striker climbs): one at rest, one sliding into it at 1 m/s. Head-on and
+    // elastic, the striker stops and the struck one leaves at the striker's speed. The same
+    // with the struck ball asleep, to 1e-5 m/s: asleep, it is not accelerated within the step.
+    let run = |sleep: bool| {
+        let (mut world, _) = world_with_floor();
+        if !sleep {
+            world.settings_mut().sleep = None;
+        }
+        let struck = world.add_sphere(SphereDesc::new(0.5).at(DVec3::new(0.0, 0.5, 0.0)));
+        let struck = struck.unwrap();
+        for _ in 0..80 {
+            world.step(DT).unwrap();
+        }
+        assert_eq!(asleep(&world, struck), sleep);
+        let striker = SphereDesc::new(0.5)
+            .at(DVec3::new(-3.0, 0.5, 0.0))
+            .moving(DVec3::X);
+        let striker = world.add_sphere(striker).unwrap();
+        for _ in 0..300 {
+            world.step(DT).unwrap();
+            let met = |c: &sphere_physics::Collision| [c.a, c.b] == [struck, striker];
+            if world.collisions().iter().any(met) {
+                let v = |id| world.body(id).unwrap().velocity();
+                assert!(!asleep(&world, struck), "struck, it wakes");
+                return (v(striker), v(struck));
+            }
+        }
+        panic!("the striker never reached the other ball");
+    };
+    let ((striker, struck), (striker_awake, struck_awake)) = (run(true), run(false));
+    assert!(
+        striker.x.abs() < 1e-5 && (struck.x - 0.996).abs() < 1e-3,
+        "{striker} {struck}"
+    );
+    assert!(
+        (striker - striker_awake).length() < 1e-5,
+        "{striker} {striker_awake}"
+    );
+    assert!(
+        (struck - struck_awake).length() < 1e-5,
+        "{struck} {struck_awake}"
+    );
+}
+
+#[test]
+fn a_group_falls_asleep_and_wakes_together() {
+    // Three balls in a row on the floor, touching: one group.
+    let (mut world, _) = world_with_floor();
+    let balls: Vec<_> = (0..3)
+        .map(|i| ball_at(&mut world, f64::from(i) - 1.0, 0.5))
+        .collect();
+    step_until_asleep(&mut world, balls[0], 120);
+    assert!(balls.iter().all(|&b| asleep(&world, b)));
+    // Waking one (changing its velocity through the world) wakes all three.
+    world.set_velocity(balls[2], DVec3::ZERO).unwrap();
+    assert!(balls.iter().all(|&b| !asleep(&world, b)));
+    step_until_asleep(&mut world, balls[0], 120);
+    world.wake(balls[1]).unwrap();
+    assert!(balls.iter().all(|&b| !asleep(&world, b)));
+    // A ball apart from them is a group of its own: it sleeps on when they are woken.
+    let apart = ball_at(&mut world, 10.0, 0.5);
+    step_until_asleep(&mut world, apart, 120);
+    assert!(balls.iter().all(|&b| asleep(&world, b)));
+    world.set_force(balls[0], DVec3::X).unwrap();
+    assert!(balls.iter().all(|&b| !asleep(&world, b)));
+    assert!(asleep(&world, apart));
+}
+
+#[test]
+fn removing_the_floor_wakes_what_rests_on_it() {
+    let (mut world, floor) = world_with_floor();
+    let ball = ball_at(&mut world, 0.0, 0.5);
+    step_until_asleep(&mut world, ball, 120);
+    world.remove_body(floor).unwrap();
+    assert!(!asleep(&world, ball));
+    world.step(DT).unwrap();
+    // Free fall from rest: semi-implicit Euler's first step.
+    let fell = 0.5 - world.body(ball).unwrap().position().y;
+    assert!((fell - 9.81 * DT * DT).abs() < 1e-12, "fell {fell}");
+}
+
+#[test]
+fn moving_the_floor_or_adding_a_fixed_sphere_beside_it_wakes_it() {
+    let (mut world, floor) = world_with_floor();
+    let ball = ball_at(&mut world, 0.0, 0.5);
+    step_until_asleep(&mut world, ball, 120);
+    world
+        .set_position(floor, DVec3::new(0.0, -FLOOR - 1.0, 0.0))
+        .unwrap();
+    assert!(!asleep(&world, ball));
+    // The ball falls the metre to the floor and sleeps there.
+    step_until_asleep(&mut world, ball, 400);
+    assert!((world.body(ball).unwrap().position().y + 0.5).abs() < 1e-3);
+    // A fixed sphere added touching it wakes it; one added far away does not.
+    world
+        .add_sphere(SphereDesc::new(1.0).at(DVec3::new(10.0, 0.0, 0.0)).fixed())
+        .unwrap();
+    assert!(asleep(&world, ball));
+    world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::new(1.0, -0.5, 0.0)).fixed())
+        .unwrap();
+    assert!(!asleep(&world, ball));
+}
+
+#[test]
+fn a_ball_landing_on_a_sleeping_one_comes_to_rest_on_it() {
+    let (mut world, _) = world_with_floor();
+    let lower = ball_at(&mut world, 0.0, 0.5);
+    step_until_asleep(&mut world, lower, 120);
+    let upper = ball_at(&mut world, 0.0, 3.0);
+    // Its bounces die away on the lower ball, which passes each impact on to the floor; the
+    // two come to rest stacked (a frictionless stack balanced on its line) and sleep.
+    step_until_asleep(&mut world, upper, 600);
+    assert!(asleep(&world, lower));
+    let (l, u) = (
+        world.body(lower).unwrap().position(),
+        world.body(upper).unwrap().position(),
+    );
+    assert!((l - DVec3::new(0.0, 0.5, 0.0)).length() < 1e-3, "{l}");
+    assert!((u - DVec3::new(0.0, 1.5, 0.0)).length() < 2e-3, "{u}");
+}
+
+#[test]
+fn drifting_free_or_hanging_on_a_string_never_sleeps() {
+    // A slow ball in empty space touches no fixed sphere: it keeps its speed.
+    let mut world = World::new(Settings {
+        sleep: Some(Sleep::default()),
+        ..Settings::default()
+    });
+    let drifter = world
+        .add_sphere(SphereDesc::new(0.5).moving(DVec3::X * 0.01))
+        .unwrap();
+    // A ball hanging at rest on a string.
+    let (mut hanging, _) = world_with_floor();
+    let pendulum = hanging
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(0.0, 3.0, 0.0))
+                .tethered(DVec3::new(0.0, 5.0, 0.0), 2.0),
+        )
+        .unwrap();
+    for _ in 0..600 {
+        world.step(DT).unwrap();
+        hanging.step(DT).unwrap();
+    }
+    assert!(!asleep(&world, drifter));
+    assert_eq!(world.body(drifter).unwrap().velocity(), DVec3::X * 0.01);
+    assert!(!asleep(&hanging, pendulum));
+}
+
+#[test]
+fn a_ball_on_a_moving_fixed_sphere_never_sleeps() {
+    let (mut world, _) = world_with_floor();
+    let ball = ball_at(&mut world, 0.0, 0.5);
+    // A kinematic sphere sliding slowly along the floor, touching the ball's far side.
+    world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(1.0, 0.5, 0.0))
+                .moving(DVec3::Z * 0.01)
+                .fixed(),
+        )
+        .unwrap();
+    for _ in 0..600 {
+        world.step(DT).unwrap();
+    }
+    assert!(!asleep(&world, ball));
+}
+
+#[test]
+fn changing_gravity_or_turning_sleep_off_wakes_everything() {
+    let (mut world, _) = world_with_floor();
+    let ball = ball_at(&mut world, 0.0, 0.5);
+    step_until_asleep(&mut world, ball, 120);
+    world.settings_mut().gravity = DVec3::new(1.0, -9.81, 0.0);
+    world.step(DT).unwrap();
+    assert!(!asleep(&world, ball));
+    assert!(world.body(ball).unwrap().velocity().x > 0.0);
+    world.settings_mut().gravity = DVec3::new(0.0, -9.81, 0.0);
+    world.set_velocity(ball, DVec3::ZERO).unwrap();
+    step_until_asleep(&mut world, ball, 120);
+    world.settings_mut().sleep = None;
+    world.step(DT).unwrap();
+    assert!(!asleep(&world, ball));
+    assert_eq!(world.stats().asleep, 0);
+}
+
+#[test]
+fn a_pit_falls_asleep_and_runs_the_same_twice() {
+    let run = || {
+        let mut world = common::pit(200, 7, 0.5, 0.05, 0.0);
+        world.settings_mut().sleep = Some(Sleep::default());
+        let mut asleep_at = None;
+        for n in 0..1200 {
+            let stats = *world.step(DT).unwrap();
+            if stats.asleep == 200 && asleep_at.is_none() {
+                asleep_at = Some(n);
+            }
+        }
+        (world.bodies().to_vec(), asleep_at)
+    };
+    let (bodies, asleep_at) = run();
+    assert!(asleep_at.is_some(), "the pit never fell asleep");
+    assert!(bodies.iter().all(|b| b.is_fixed() || b.is_asleep()));
+    assert_eq!(run(), (bodies, asleep_at), "bit for bit the same");
+}
+
+#[test]
+fn bad_sleep_settings_are_refused_naming_the_field() {
+    let (mut world, _) = world_with_floor();
+    ball_at(&mut world, 0.0, 0.5);
+    for (sleep, field) in [
+        (
+            Sleep {
+                speed: f64::NAN,
+                time: 1.0,
+            },
+            "sleep.speed",
+        ),
+        (
+            Sleep {
+                speed: -1.0,
+                time: 1.0,
+            },
+            "sleep.speed",
+        ),
+        (
+            Sleep {
+                speed: 0.1,
+                time: f64::INFINITY,
+            },
+            "sleep.time",
+        ),
+    ] {
+        world.settings_mut().sleep = Some(sleep);
+        match world.step(DT) {
+            Err(WorldError::InvalidSetting { field: f, .. }) => assert_eq!(f, field),
+            other => panic!("{other:?}"),
+        }
+    }
+    assert_eq!(world.time(), 0.0);
+}
+
+#[test]
+fn a_scene_file_asks_for_sleeping() {
+    let scene = |sleep: &str| {
+        SceneDesc::from_ron(&format!(
+            "(name: \"s\", gravity: (0.0, -9.81, 0.0), {sleep}
+              spheres: [(position: (0.0, 0.5, 0.0), radius: 0.5)])"
+        ))
+    };
+    assert_eq!(scene("").unwrap().settings().unwrap().sleep, None);
+    let defaults = scene("sleep: (),").unwrap().settings().unwrap().sleep;
+    assert_eq!(defaults, Some(Sleep::default()));
+    let chosen = scene("sleep: (speed: 0.05, time: 2.0),").unwrap();
+    let chosen = chosen.settings().unwrap().sleep;
+    assert_eq!(
+        chosen,
+        Some(Sleep {
+            speed: 0.05,
+            time: 2.0
+        })
+    );
+    let bad = scene("sleep: (speed: -1.0),")
+        .unwrap()
+        .settings()
+        .unwrap_err();
+    assert!(bad.to_string().contains("sleep.speed"), "{bad}");
+    let unknown = scene("sleep: (sped: 1.0),").unwrap_err();
+    assert!(unknown.to_string().contains("sped"), "{unknown}");
+}

@@ -127,7 +127,13 @@ fn panel(
                         if clock.paused { " (paused)" } else { "" }
                     ),
                 );
-                row("spheres", format!("{}", world.len()));
+                // With sleeping on (the ball pit's), how many are asleep.
+                let asleep = if world.settings().sleep.is_some() {
+                    format!(" ({} asleep)", diagnostics.last.asleep)
+                } else {
+                    String::new()
+                };
+                row("spheres", format!("{}{asleep}", world.len()));
                 row(
                     "collisions",
                     format!(

@@ -71,4 +71,5 @@ pub mod prelude {
         SphereShownTime,
     };
     pub use bevy::math::DVec3;
+    pub use sphere_physics::Sleep;
 }

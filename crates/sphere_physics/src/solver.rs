@@ -83,6 +83,8 @@ struct Extra {
     restitution: f64,
     /// The body's id (records name bodies without reading the body array).
     id: crate::BodyId,
+    /// Asleep (see `Settings::sleep`): at rest, not accelerated.
+    asleep: bool,
 }
 
 const _: () = assert!(size_of::<Extra>() == 64, "an Extra is one cache line");
@@ -383,9 +385,12 @@ pub(crate) struct Solver {
     separate_at: Vec<DVec3>,
     separate_moves: Vec<DVec3>,
     separate_pairs: Vec<(u32, u32)>,
-    /// Whether no dynamic body accelerates this step (no gravity, no applied force): then
-    /// overlaps left at its end are moved apart (see [`Solver::separate`]).
+    /// Whether no dynamic body accelerates this step (no gravity, no applied force; an asleep
+    /// body counts with what would act on it): then overlaps left at its end are moved apart
+    /// (see [`Solver::separate`]).
     nothing_accelerates: bool,
+    /// Whether any body is asleep this step (see `Settings::sleep`).
+    any_asleep: bool,
     /// Re-queries within one instant (see [`Solver::requery_touched`]): the instant's stamp,
     /// and each segment's stamp when it was last queried in full while [`Solver::caching`]
     /// (its candidates then are `candidate_cache[range]`, valid while the stamps match).
@@ -755,6 +760,7 @@ impl Solver {
         // root per body; and a tiny acceleration whose length would underflow still counts).
         let mut largest_acceleration = 0.0f64;
         self.strings = false;
+        self.any_asleep = false;
         self.largest_kick_after = 0.0;
         let mut overflow = None;
         for (index, body) in bodies.iter().enumerate() {
@@ -762,8 +768,14 @@ impl Solver {
                 (DVec3::ZERO, Default::default())
             } else if body.asleep {
                 // Asleep: at rest, and nothing acts on it until something wakes it (see
-                // `Settings::sleep`); it still has its mass in every impact.
+                // `Settings::sleep`); it still has its mass in every impact. What would act on
+                // it still sets the step's scales, as if it were awake: with nothing
+                // accelerating, overlaps are moved apart at the step's end, and asleep spheres
+                // press into one another as they settled.
                 dynamic += 1;
+                self.any_asleep = true;
+                let a = settings.gravity + body.force() * body.inverse_mass();
+                largest_acceleration = largest_acceleration.max(a.abs().max_element());
                 (DVec3::ZERO, Default::default())
             } else {
                 dynamic += 1;
@@ -822,6 +834,7 @@ impl Solver {
                 acceleration,
                 restitution: body.restitution(),
                 id: body.id(),
+                asleep: body.asleep,
             });
         }
         self.strings = !self.strung.is_empty();
@@ -936,6 +949,12 @@ impl Solver {
         self.loads.clear();
         // A pair the first pass keeps: a resting contact, or its time of impact.
         let mut first_pass_pair = |solver: &mut Self, i: usize, j: usize| {
+            if solver.any_asleep && solver.asleep_beside_still(i, j) {
+                // Neither moves nor presses the other (nor is moved apart, if they settled
+                // pressed together); counted for the deepest overlap.
+                solver.tested.push((i as u32, j as u32));
+                return;
+            }
             let rests = if solver.may_rest(i, j, ctx) {
                 solver.resting_contact(i, j, ctx)
             } else {
@@ -1309,6 +1328,16 @@ impl Solver {
     }
 
     /// Segment `k`'s [`Extra`].
+    /// Whether of segments `i` and `j` one is asleep and the other asleep too or fixed and
+    /// still (see `Settings::sleep`).
+    fn asleep_beside_still(&self, i: usize, j: usize) -> bool {
+        let still = |k: usize| {
+            let s = &self.segments[k];
+            self.extra(k).asleep || (s.is_fixed() && s.velocity == DVec3::ZERO)
+        };
+        (self.extra(i).asleep || self.extra(j).asleep) && still(i) && still(j)
+    }
+
     fn extra(&self, k: usize) -> &Extra {
         &self.extras[self.order[k] as usize]
     }

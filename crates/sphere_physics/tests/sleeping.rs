@@ -370,3 +370,70 @@ fn a_scene_file_asks_for_sleeping() {
     let unknown = scene("sleep: (sped: 1.0),").unwrap_err();
     assert!(unknown.to_string().contains("sped"), "{unknown}");
 }
+
+#[test]
+fn a_pit_stays_asleep_while_a_fixed_sphere_moves_far_from_it() {
+    // Every dynamic sphere asleep, so nothing awake accelerates; a kinematic sphere moving
+    // elsewhere keeps the steps from being quiet. The bed's spheres press into one another by
+    // a fraction of a millimetre (as they settled); nothing may move them apart now.
+    let mut world = common::pit(200, 7, 0.5, 0.05, 0.0);
+    world.settings_mut().sleep = Some(Sleep::default());
+    for _ in 0..1200 {
+        world.step(DT).unwrap();
+    }
+    assert_eq!(world.stats().asleep, 200);
+    let bed: Vec<_> = world.bodies().iter().map(|b| b.position()).collect();
+    world
+        .add_sphere(
+            SphereDesc::new(0.1)
+                .at(DVec3::new(100.0, 0.0, 0.0))
+                .moving(DVec3::Z)
+                .fixed(),
+        )
+        .unwrap();
+    for _ in 0..120 {
+        let stats = *world.step(DT).unwrap();
+        assert_eq!(stats.asleep, 200);
+    }
+    for (body, at) in world.bodies().iter().zip(bed) {
+        assert_eq!(body.position(), at);
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(common::proptest_config(24, common::SEED))]
+    /// Random pits with sleeping on, at random steps and sleeping settings: at every step
+    /// everything is finite, an asleep sphere has no speed, one asleep at both ends of a step
+    /// was not moved by it, and the reported largest overlap is the largest of any pair (the
+    /// quiet steps' and the asleep pairs' included).
+    #[test]
+    fn asleep_spheres_stay_put_and_the_overlap_is_reported(
+        count in 20u32..120,
+        seed in 0u64..1000,
+        restitution in 0.0..0.9f64,
+        steps_per_second in 30.0..120.0f64,
+        speed in 0.05..0.3f64,
+        time in 0.25..1.0f64,
+    ) {
+        let mut world = common::pit(count, seed, restitution, 0.05, 0.0);
+        world.settings_mut().sleep = Some(Sleep { speed, time });
+        let dt = 1.0 / steps_per_second;
+        let mut before: Vec<Option<DVec3>> = vec![None; world.len()];
+        for step in 0..(8.0 * steps_per_second) as u32 {
+            let reported = world.step(dt).unwrap().max_overlap;
+            proptest::prop_assert_eq!(reported, world.max_overlap(), "step {}", step);
+            for (body, at) in world.bodies().iter().zip(&mut before) {
+                proptest::prop_assert!(body.position().is_finite() && body.velocity().is_finite());
+                if !body.is_asleep() {
+                    *at = None;
+                    continue;
+                }
+                proptest::prop_assert_eq!(body.velocity(), DVec3::ZERO, "step {}", step);
+                if let Some(at) = *at {
+                    proptest::prop_assert_eq!(body.position(), at, "step {}", step);
+                }
+                *at = Some(body.position());
+            }
+        }
+    }
+}

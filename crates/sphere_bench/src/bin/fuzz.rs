@@ -1,7 +1,7 @@
 //! `sphere-fuzz`: random scenes stepped by the core, each checked for what must hold in it.
 //!
 //!     cargo run --release -p sphere_bench --bin sphere-fuzz -- [--from 0] [--count 5000]
-//!         [--strings none|slow|fast] [--wide] [--overlapping] [--substeps 1]
+//!         [--strings none|slow|fast] [--wide] [--overlapping] [--substeps 1] [--sleep]
 //!
 //! Each seed makes a scene of 2 to 121 spheres in a box 1 to 40 m wide: one radius (0.1) or
 //! radii from 1 cm to 1 m, densities from 0.1 to 1000, restitutions from 0 to 1 (1 for about a
@@ -12,13 +12,16 @@
 //! strings a few radii long, at any speed; with `none` (the default) no strings. `--wide` adds
 //! the tutorial's bisection (3 scenes in 10), scenes up to 1e5 m from the origin, and radii from
 //! 2 mm to 5 m; `--overlapping` places spheres without keeping them apart. `--substeps k` takes
-//! k times as many steps, each k times shorter.
+//! k times as many steps, each k times shorter. `--sleep` turns sleeping on (`Sleep::default()`)
+//! in the same scenes.
 //!
 //! Every step of every scene is checked: positions and velocities finite; bit for bit the
 //! same in a second world built from the same seed; momentum kept where nothing outside
 //! acts (no gravity, no fixed sphere, no string); kinetic energy never gained where nothing
 //! can give it (no gravity, no kinematic sphere, no string; up to 1e-9 of it for rounding);
-//! the step's reported deepest overlap no shallower than the deepest of any pair. Any of
+//! the step's reported deepest overlap no shallower than the deepest of any pair; with
+//! `--sleep`, a sphere asleep at rest, and one asleep at both ends of a step not moved by it
+//! (to the bit). Any of
 //! these failing is an error (the exit code says so). A scene whose deepest overlap passes
 //! 5% of the pair's smaller radius is listed too, with whether its collision budget ran out
 //! that step or the one before (and the bisection's iterations and the distance from the
@@ -29,7 +32,7 @@
 //! undone).
 
 use sphere_physics::glam::DVec3;
-use sphere_physics::{IntegratorKind, Settings, SphereDesc, StepStats, ToiMethod, World};
+use sphere_physics::{IntegratorKind, Settings, Sleep, SphereDesc, StepStats, ToiMethod, World};
 
 /// SplitMix64, as the scene generators use: the same scenes everywhere.
 struct Rng(u64);
@@ -69,6 +72,7 @@ struct Options {
     wide: bool,
     overlapping: bool,
     substeps: u32,
+    sleep: bool,
 }
 
 /// What a scene has, for the checks that depend on it.
@@ -105,6 +109,8 @@ fn scene(seed: u64, o: &Options) -> (World, Kind, f64, u32) {
     if leapfrog {
         settings.integrator = IntegratorKind::Leapfrog;
     }
+    // Draws nothing from `r`: the same scenes as without.
+    settings.sleep = o.sleep.then(Sleep::default);
     if o.wide && r.unit() < 0.3 {
         let max_iterations = 8 + (r.unit() * 56.0) as u32;
         settings.method = ToiMethod::Bisection { max_iterations };
@@ -206,6 +212,8 @@ struct Outcome {
     spent: bool,
     /// Whether the last step recorded ran the budget out.
     spent_last: bool,
+    /// Whether any sphere was asleep after any step (`--sleep`).
+    slept: bool,
 }
 
 impl Outcome {
@@ -248,6 +256,8 @@ fn run(
         .max(f64::MIN_POSITIVE);
     let mut energy = world.kinetic_energy();
     let mut outcome = Outcome::default();
+    // Where each sphere asleep after the last step was (NaN for those awake).
+    let mut asleep_at: Vec<DVec3> = vec![DVec3::NAN; world.len()];
     for step in 0..steps {
         let stats: StepStats = *world.step(dt).map_err(|e| format!("step {step}: {e}"))?;
         twin.step(dt)
@@ -278,6 +288,25 @@ fn run(
             return Err(format!("step {step}: kinetic energy {energy} -> {now}"));
         }
         energy = now;
+        for (body, at) in world.bodies().iter().zip(&mut asleep_at) {
+            if !body.is_asleep() {
+                *at = DVec3::NAN;
+                continue;
+            }
+            outcome.slept = true;
+            if body.velocity() != DVec3::ZERO {
+                return Err(format!("step {step}: asleep at {}", body.velocity()));
+            }
+            // NaN (awake before) never equals: only a sphere asleep at both ends is checked.
+            let moved = at.is_finite() && body.position() != *at;
+            if moved {
+                return Err(format!(
+                    "step {step}: asleep, moved from {at} to {}",
+                    body.position()
+                ));
+            }
+            *at = body.position();
+        }
         let (deepest, relative) = overlaps(&world);
         if deepest > stats.max_overlap + 1e-9 {
             return Err(format!(
@@ -291,7 +320,7 @@ fn run(
 }
 
 const USAGE: &str = "sphere-fuzz [--from 0] [--count 5000] [--strings none|slow|fast] [--wide] \
-[--overlapping] [--substeps 1]: random scenes stepped by the core and checked at every step \
+[--overlapping] [--substeps 1] [--sleep]: random scenes stepped by the core and checked at every step \
 (finite, the same as a twin, momentum and energy where nothing outside acts, the reported \
 overlap); scenes ending a step with a pair more than 5% of the smaller radius into each other \
 are listed. Exit code 1 if any check failed. See crates/sphere_bench/src/bin/fuzz.rs.";
@@ -304,6 +333,7 @@ fn options() -> Result<Options, String> {
         wide: false,
         overlapping: false,
         substeps: 1,
+        sleep: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -331,6 +361,7 @@ fn options() -> Result<Options, String> {
             }
             "--wide" => o.wide = true,
             "--overlapping" => o.overlapping = true,
+            "--sleep" => o.sleep = true,
             _ => return Err(format!("unknown argument {flag} (see the file's docs)")),
         }
     }
@@ -346,7 +377,7 @@ fn main() {
         }
     };
     let (mut errors, mut deep, mut deep_spent, mut with_strings) = (0u64, 0u64, 0u64, 0u64);
-    let (mut deep_at_end, mut deep_bisection) = (0u64, 0u64);
+    let (mut deep_at_end, mut deep_bisection, mut slept) = (0u64, 0u64, 0u64);
     for seed in o.from..o.from + o.count {
         let (kind, outcome) = check(seed, &o);
         with_strings += u64::from(kind.strings);
@@ -356,8 +387,13 @@ fn main() {
                 println!("seed {seed}: ERROR {e}");
             }
             Ok(Outcome {
-                worst, last, spent, ..
+                worst,
+                last,
+                spent,
+                slept: s,
+                ..
             }) if worst > 0.05 => {
+                slept += u64::from(s);
                 deep_at_end += u64::from(last > 0.05);
                 if spent {
                     deep_spent += 1;
@@ -386,14 +422,19 @@ fn main() {
                      at the last step ({gravity})"
                 );
             }
-            Ok(_) => {}
+            Ok(outcome) => slept += u64::from(outcome.slept),
         }
     }
     println!(
         "{} scenes ({with_strings} with strings): {errors} errors; past 5% of a radius: {deep} \
          within the collision budget ({deep_bisection} of them with the bisection), {deep_spent} \
-         with it spent; {deep_at_end} still past it at the last step",
-        o.count
+         with it spent; {deep_at_end} still past it at the last step{}",
+        o.count,
+        if o.sleep {
+            format!("; {slept} scenes with spheres asleep")
+        } else {
+            String::new()
+        }
     );
     if errors > 0 {
         std::process::exit(1);

@@ -123,6 +123,8 @@ pub struct BodyReport {
     pub mass: Option<f64>,
     /// Fixed.
     pub fixed: bool,
+    /// Asleep at the end (only when the scene turns sleeping on: see `Settings::sleep`).
+    pub asleep: bool,
 }
 
 /// Energy and momentum at one instant.
@@ -342,6 +344,7 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
             radius: body.radius(),
             mass: (!body.is_fixed()).then(|| body.mass()),
             fixed: body.is_fixed(),
+            asleep: body.is_asleep(),
         })
         .collect();
     let sphere_steps = (world.len() as f64) * (world.steps() as f64);

@@ -215,6 +215,23 @@ fn touching_cradle_sends_exactly_one_ball_out() {
 }
 
 #[test]
+fn the_ball_pit_falls_asleep_and_says_so() {
+    // The scene turns sleeping on; its bed is asleep at 3.2 s.
+    let scene = assets().join("ball_pit.ron");
+    let r = report(&["run", scene.to_str().unwrap(), "--duration", "5"]);
+    let bodies = r["bodies"].as_array().unwrap();
+    let asleep = |b: &&Value| b["asleep"] == true;
+    let dynamic = |b: &&Value| b["fixed"] == false;
+    assert_eq!(bodies.iter().filter(dynamic).count(), 400);
+    assert!(bodies.iter().filter(dynamic).all(|b| asleep(&b)));
+    assert!(!bodies.iter().filter(|b| !dynamic(b)).any(|b| asleep(&b)));
+    for b in bodies.iter().filter(dynamic) {
+        assert_eq!(vec3(&b["velocity"]), [0.0; 3]);
+    }
+    assert_eq!(r["stats"]["kinetic_energy"], 0.0);
+}
+
+#[test]
 fn every_scene_file_runs() {
     let mut names = Vec::new();
     for entry in std::fs::read_dir(assets()).unwrap() {

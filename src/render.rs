@@ -1,5 +1,5 @@
 //! Drawing the lab: lit spheres in the tutorial's colours (blue 1x, green 2x, red 3x the
-//! scene's lightest density; fixed spheres grey), strings and a frame for tethered spheres, a
+//! scene's lightest density, each darker while the sphere is asleep; fixed spheres grey), strings and a frame for tethered spheres, a
 //! ground under each scene, lights, and capturing frames for screenshots.
 
 use bevy::prelude::*;
@@ -25,6 +25,12 @@ pub mod colours {
     pub const GREEN: Color = Color::srgb(0.12, 0.78, 0.22);
     /// Density 3x.
     pub const RED: Color = Color::srgb(0.92, 0.12, 0.10);
+    /// The same three while asleep: darker.
+    pub const BLUE_ASLEEP: Color = Color::srgb(0.06, 0.12, 0.36);
+    /// Density 2x, asleep.
+    pub const GREEN_ASLEEP: Color = Color::srgb(0.05, 0.30, 0.09);
+    /// Density 3x, asleep.
+    pub const RED_ASLEEP: Color = Color::srgb(0.36, 0.05, 0.04);
     /// Fixed spheres.
     pub const GREY: Color = Color::srgb(0.55, 0.56, 0.58);
     /// Strings.
@@ -53,6 +59,7 @@ impl Plugin for LabRenderPlugin {
                     dress_spheres,
                     dress_strings,
                     place_strings,
+                    tint_sleepers,
                     build_stage.run_if(on_message::<StateTransitionEvent<ActiveScene>>),
                 )
                     .chain(),
@@ -73,6 +80,8 @@ struct LabAssets {
     blue: Handle<StandardMaterial>,
     green: Handle<StandardMaterial>,
     red: Handle<StandardMaterial>,
+    /// `blue`, `green` and `red` while asleep.
+    asleep: [Handle<StandardMaterial>; 3],
     grey: Handle<StandardMaterial>,
     string: Handle<StandardMaterial>,
     frame: Handle<StandardMaterial>,
@@ -98,6 +107,11 @@ fn setup(
         blue: shiny(colours::BLUE, 0.3),
         green: shiny(colours::GREEN, 0.3),
         red: shiny(colours::RED, 0.3),
+        asleep: [
+            shiny(colours::BLUE_ASLEEP, 0.5),
+            shiny(colours::GREEN_ASLEEP, 0.5),
+            shiny(colours::RED_ASLEEP, 0.5),
+        ],
         grey: shiny(colours::GREY, 0.5),
         string: shiny(colours::STRING, 0.9),
         frame: shiny(colours::FRAME, 0.6),
@@ -175,17 +189,23 @@ fn dress_spheres(
         if body.radius > WALL_RADIUS || !body.radius.is_finite() {
             continue;
         }
-        let material = if fixed {
-            assets.grey.clone()
+        let (material, tints) = if fixed {
+            (assets.grey.clone(), None)
         } else {
             let ratio = density.0 / lightest;
-            if ratio < 1.5 {
-                assets.blue.clone()
+            let (awake, k) = if ratio < 1.5 {
+                (&assets.blue, 0)
             } else if ratio < 2.5 {
-                assets.green.clone()
+                (&assets.green, 1)
             } else {
-                assets.red.clone()
-            }
+                (&assets.red, 2)
+            };
+            let asleep = assets.asleep[k].clone();
+            let tints = Tints {
+                awake: awake.clone(),
+                asleep,
+            };
+            (awake.clone(), Some(tints))
         };
         let sectors = sectors_for(body.radius, smallest);
         let mesh = match assets.spheres.iter().find(|(n, _)| *n == sectors) {
@@ -196,15 +216,53 @@ fn dress_spheres(
                 mesh
             }
         };
-        commands
-            .entity(entity)
-            .insert(Visibility::default())
-            .with_child((
-                SphereVisual,
-                Mesh3d(mesh),
-                MeshMaterial3d(material),
-                Transform::from_scale(Vec3::splat(body.radius as f32)),
-            ));
+        let mut sphere = commands.entity(entity);
+        sphere.insert(Visibility::default()).with_child((
+            SphereVisual,
+            Mesh3d(mesh),
+            MeshMaterial3d(material),
+            Transform::from_scale(Vec3::splat(body.radius as f32)),
+        ));
+        if let Some(tints) = tints {
+            sphere.insert(SphereTints(tints));
+        }
+    }
+}
+
+/// A moving sphere's materials, awake and asleep.
+#[derive(Clone, Debug)]
+struct Tints {
+    awake: Handle<StandardMaterial>,
+    asleep: Handle<StandardMaterial>,
+}
+
+/// On a sphere that may fall asleep: its [`Tints`].
+#[derive(Component)]
+struct SphereTints(Tints);
+
+/// Draws each sphere in its asleep colour while it is asleep (scenes with sleeping on).
+fn tint_sleepers(
+    physics: Res<SpherePhysicsWorld>,
+    spheres: Query<(&SphereHandle, &SphereTints, &Children)>,
+    mut visuals: Query<&mut MeshMaterial3d<StandardMaterial>, With<SphereVisual>>,
+) {
+    for (handle, tints, children) in &spheres {
+        let asleep = physics
+            .world
+            .body(handle.0)
+            .is_some_and(|body| body.is_asleep());
+        let want = if asleep {
+            &tints.0.asleep
+        } else {
+            &tints.0.awake
+        };
+        for child in children.iter() {
+            if let Ok(mut material) = visuals.get_mut(child)
+                && material.0 != *want
+            {
+                material.0 = want.clone();
+            }
+        }
     }
 }
 

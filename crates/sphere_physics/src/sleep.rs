@@ -60,6 +60,8 @@ pub(crate) struct Sleeper {
     /// Every dynamic body asleep and no fixed one moving since the last step, and nothing
     /// changed since through the world: the next step has nothing to do.
     quiet: bool,
+    /// Bodies asleep.
+    asleep: usize,
 }
 
 impl Sleeper {
@@ -74,17 +76,31 @@ impl Sleeper {
         if sleep.is_none() {
             // Turned off (nothing can be asleep if it was never on: no scan then).
             if self.gravity.take().is_some() {
-                wake_all(bodies);
-                self.quiet = false;
+                self.wake_all(bodies);
             }
             return false;
         }
         if self.gravity != Some(gravity) {
-            wake_all(bodies);
-            self.quiet = false;
+            self.wake_all(bodies);
             self.gravity = Some(gravity);
         }
         self.quiet
+    }
+
+    /// Bodies asleep.
+    pub fn asleep(&self) -> usize {
+        self.asleep
+    }
+
+    /// Wakes every body, and starts every body's calm again (gravity changed, or sleeping was
+    /// turned off).
+    fn wake_all(&mut self, bodies: &mut [Body]) {
+        for body in bodies.iter_mut() {
+            body.asleep = false;
+            body.calm = 0.0;
+        }
+        self.asleep = 0;
+        self.quiet = false;
     }
 
     /// Something was changed through the world (a body added, removed or changed): the next
@@ -96,7 +112,7 @@ impl Sleeper {
     /// After a step of `dt` ending at `now`: wakes the islands of sleeping bodies the step
     /// moved or gave a speed, times each awake body's calm, and puts to sleep each group of
     /// touching bodies that has stayed calm long enough and rests on a still fixed sphere.
-    /// Returns the kinetic energy and momentum the bodies falling asleep had.
+    /// Returns whether any body fell asleep.
     pub fn after_step(
         &mut self,
         bodies: &mut [Body],
@@ -104,37 +120,38 @@ impl Sleeper {
         sleep: Sleep,
         dt: f64,
         now: f64,
-    ) -> (f64, DVec3) {
+    ) -> bool {
         self.wake.clear();
         let mut ready = false;
-        let mut moving = false;
+        let (mut moving, mut dynamic) = (false, 0);
         for body in bodies.iter_mut() {
             if body.is_fixed() {
                 moving |= body.desc.velocity != DVec3::ZERO;
-            } else if body.asleep {
+                continue;
+            }
+            dynamic += 1;
+            if body.asleep {
                 if body.desc.velocity != DVec3::ZERO || body.desc.position != body.rest {
                     self.wake.push(body.island);
                 }
             } else if body.tether().is_none() && body.desc.velocity.length() < sleep.speed {
+                // Calm this step: `calm > 0` from here on (see `ready_to_sleep`).
                 body.calm += dt;
-                ready |= body.calm >= sleep.time;
+                ready |= ready_to_sleep(body, sleep);
             } else {
                 body.calm = 0.0;
             }
         }
         self.wake_islands(bodies);
-        let taken = if ready && now >= self.next_check {
+        let before = self.asleep;
+        if ready && now >= self.next_check {
             // Forming the groups reads every body: done at most four times per `sleep.time`
             // (a group may fall asleep up to a quarter of it late).
             self.next_check = now + sleep.time / 4.0;
-            self.fall_asleep(bodies, solver, sleep)
-        } else {
-            (0.0, DVec3::ZERO)
-        };
-        self.quiet = !moving
-            && bodies.iter().any(|b| b.asleep)
-            && bodies.iter().all(|b| b.is_fixed() || b.asleep);
-        taken
+            self.fall_asleep(bodies, solver, sleep);
+        }
+        self.quiet = !moving && self.asleep > 0 && self.asleep == dynamic;
+        self.asleep > before
     }
 
     /// Wakes the islands in `self.wake`.
@@ -147,7 +164,9 @@ impl Sleeper {
         self.wake.dedup();
         for body in bodies.iter_mut() {
             if body.asleep && self.wake.binary_search(&body.island).is_ok() {
-                wake(body);
+                body.asleep = false;
+                body.calm = 0.0;
+                self.asleep -= 1;
             }
         }
         self.wake.clear();
@@ -164,6 +183,9 @@ impl Sleeper {
     /// Wakes the islands of the sleeping bodies touching (see [`SLEEP_CONTACT`]) a sphere of
     /// `radius` at `centre`: a fixed sphere added, removed or changed there.
     pub fn wake_around(&mut self, bodies: &mut [Body], centre: DVec3, radius: f64) {
+        if self.asleep == 0 {
+            return;
+        }
         self.wake.extend(
             bodies
                 .iter()
@@ -176,12 +198,7 @@ impl Sleeper {
     /// Puts to sleep each group of touching dynamic bodies that is ready: every body asleep
     /// or calm for `sleep.time` (none on a string), one at least awake, one at least touching
     /// a fixed sphere that does not move, and none touching one that does.
-    fn fall_asleep(
-        &mut self,
-        bodies: &mut [Body],
-        solver: &mut Solver,
-        sleep: Sleep,
-    ) -> (f64, DVec3) {
+    fn fall_asleep(&mut self, bodies: &mut [Body], solver: &mut Solver, sleep: Sleep) {
         let n = bodies.len();
         self.parent.clear();
         self.parent.extend(0..n as u32);
@@ -227,7 +244,7 @@ impl Sleeper {
             let mut own = self.flags[i];
             if !body.asleep {
                 own |= AWAKE;
-                if body.calm < sleep.time {
+                if !ready_to_sleep(body, sleep) {
                     own |= BLOCKED;
                 }
             }
@@ -240,7 +257,6 @@ impl Sleeper {
         }
         self.new_island.clear();
         self.new_island.resize(n, 0);
-        let (mut kinetic, mut momentum) = (0.0, DVec3::ZERO);
         for (i, body) in bodies.iter_mut().enumerate() {
             if body.is_fixed() {
                 continue;
@@ -253,28 +269,20 @@ impl Sleeper {
                 self.last_island += 1;
                 self.new_island[root] = self.last_island;
             }
-            kinetic += body.kinetic_energy();
-            momentum += body.momentum();
+            self.asleep += usize::from(!body.asleep);
             body.asleep = true;
             body.island = self.new_island[root];
             body.desc.velocity = DVec3::ZERO;
             body.rest = body.desc.position;
             body.calm = 0.0;
         }
-        (kinetic, momentum)
     }
 }
 
-/// Wakes every body.
-pub(crate) fn wake_all(bodies: &mut [Body]) {
-    for body in bodies.iter_mut().filter(|b| b.asleep) {
-        wake(body);
-    }
-}
-
-fn wake(body: &mut Body) {
-    body.asleep = false;
-    body.calm = 0.0;
+/// Whether awake `body` has been calm long enough to fall asleep: calm in the last step (so
+/// `calm > 0`: with a sleeping time of 0, calm in that step alone), and for `sleep.time`.
+fn ready_to_sleep(body: &Body, sleep: Sleep) -> bool {
+    body.calm > 0.0 && body.calm >= sleep.time
 }
 
 /// How far apart `body` and a sphere of `radius` at `centre` are (negative when they overlap).

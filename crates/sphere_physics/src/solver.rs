@@ -766,7 +766,7 @@ impl Solver {
         for (index, body) in bodies.iter().enumerate() {
             let (acceleration, kicks) = if body.is_fixed() {
                 (DVec3::ZERO, Default::default())
-            } else if body.asleep {
+            } else if body.asleep && body.velocity() == DVec3::ZERO {
                 // Asleep: at rest, and nothing acts on it until something wakes it (see
                 // `Settings::sleep`); it still has its mass in every impact. What would act on
                 // it still sets the step's scales, as if it were awake: with nothing
@@ -834,7 +834,9 @@ impl Solver {
                 acceleration,
                 restitution: body.restitution(),
                 id: body.id(),
-                asleep: body.asleep,
+                // An asleep body given a speed in an earlier substep moves as an awake one
+                // until the step's end wakes it.
+                asleep: body.asleep && body.velocity() == DVec3::ZERO,
             });
         }
         self.strings = !self.strung.is_empty();

@@ -359,6 +359,9 @@ impl World {
             self.sleeper.wake_around(&mut self.bodies, centre, radius);
         } else {
             self.sleeper.wake_island_of(&mut self.bodies, index);
+            // Awake, it is calm from now on only (moved, say, near a floor it would never
+            // reach before falling asleep with a calm it had gathered elsewhere).
+            self.bodies[index].calm = 0.0;
         }
     }
 
@@ -566,14 +569,16 @@ impl World {
         std::mem::swap(&mut self.collisions, &mut self.solver.collisions);
         self.profile = self.solver.profile;
         if let Some(sleep) = sleep {
-            // The solver summed the energies and momentum as it wrote the bodies back: take
-            // off what the bodies falling asleep had.
-            let (kinetic, momentum) =
+            let fell_asleep =
                 self.sleeper
                     .after_step(&mut self.bodies, &mut self.solver, sleep, dt, self.time);
-            stats.kinetic_energy -= kinetic;
-            stats.momentum -= momentum;
-            stats.asleep = self.bodies.iter().filter(|b| b.asleep).count() as u32;
+            if fell_asleep {
+                // The solver summed them as it wrote the bodies back: now without the speeds
+                // of the bodies that fell asleep.
+                stats.kinetic_energy = self.kinetic_energy();
+                stats.momentum = self.momentum();
+            }
+            stats.asleep = self.sleeper.asleep() as u32;
         }
         stats.time = self.time;
         self.stats = stats;

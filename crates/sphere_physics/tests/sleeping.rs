@@ -437,3 +437,99 @@ proptest::proptest! {
         }
     }
 }
+
+/// Review of the sleeping commits: with substeps, a sphere asleep and struck in one substep
+/// was still taken as asleep in the next ones (no gravity, and its pairs with other asleep or
+/// still fixed spheres skipped), so it passed into a second sleeping ball beside it.
+#[test]
+fn regression_struck_while_asleep_with_substeps() {
+    for start in 0..16 {
+        let (mut world, _) = world_with_floor();
+        world.settings_mut().substeps = 4;
+        // Two balls 3 cm apart on the floor (more than 5% of a radius: each a group of its
+        // own), asleep.
+        let b = ball_at(&mut world, 0.0, 0.5);
+        let c = ball_at(&mut world, 1.03, 0.5);
+        step_until_asleep(&mut world, b, 120);
+        step_until_asleep(&mut world, c, 120);
+        // A ball sliding into b at 10 m/s, from a start that moves the impact through the
+        // step's substeps.
+        let x = -1.5 - f64::from(start) * 10.0 * DT / 16.0;
+        let striker = SphereDesc::new(0.5)
+            .at(DVec3::new(x, 0.5, 0.0))
+            .moving(DVec3::X * 10.0)
+            .with_restitution(1.0);
+        world.add_sphere(striker).unwrap();
+        for _ in 0..30 {
+            let stats = *world.step(DT).unwrap();
+            assert!(
+                stats.max_overlap < 1e-3,
+                "start {start}: {}",
+                stats.max_overlap
+            );
+        }
+        assert!(
+            world.body(c).unwrap().position().x > 1.1,
+            "start {start}: c never struck"
+        );
+    }
+}
+
+/// Review: with a sleeping time of 0, a sphere fast or on a string counted as ready (its
+/// calm, 0, was not less than the time) and fell asleep.
+#[test]
+fn regression_sleeping_time_zero_stops_only_calm_spheres() {
+    let (mut world, _) = world_with_floor();
+    world.settings_mut().sleep = Some(Sleep {
+        speed: 0.2,
+        time: 0.0,
+    });
+    let resting = ball_at(&mut world, 0.0, 0.5);
+    let sliding = world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(5.0, 0.5, 0.0))
+                .moving(DVec3::Z * 3.0),
+        )
+        .unwrap();
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+    }
+    assert!(asleep(&world, resting));
+    assert!(!asleep(&world, sliding));
+    assert!((world.body(sliding).unwrap().velocity().z - 3.0).abs() < 1e-3);
+}
+
+/// Review: a sphere changed through the world kept the calm it had gathered, so moved near a
+/// floor it could fall asleep in the air before reaching it.
+#[test]
+fn regression_a_moved_sphere_is_calm_only_from_then_on() {
+    for delay in 0..16 {
+        let (mut world, _) = world_with_floor();
+        let ball = ball_at(&mut world, 0.0, 0.5);
+        // Calm for a long time, but kept awake by a kinematic sphere creeping beside it.
+        let creeper = SphereDesc::new(0.5)
+            .at(DVec3::new(1.0, 0.5, 0.0))
+            .moving(DVec3::Z * 1e-3)
+            .fixed();
+        world.add_sphere(creeper).unwrap();
+        for _ in 0..120 + delay {
+            world.step(DT).unwrap();
+        }
+        assert!(!asleep(&world, ball));
+        // Moved 2 cm above the floor, far from the creeper (within 5% of its radius of the
+        // floor: it would count as resting there).
+        world
+            .set_position(ball, DVec3::new(-5.0, 0.52, 0.0))
+            .unwrap();
+        for _ in 0..10 {
+            world.step(DT).unwrap();
+            let body = world.body(ball).unwrap();
+            assert!(
+                !(body.is_asleep() && body.position().y > 0.5 + 1e-3),
+                "delay {delay}: asleep in the air at {}",
+                body.position()
+            );
+        }
+    }
+}

@@ -663,6 +663,9 @@ pub(crate) struct StepContext<'a> {
     pub toi: Option<&'a dyn TimeOfImpact>,
     pub dt: f64,
     pub start_time: f64,
+    /// Whether any body may be asleep (see `Settings::sleep`): when not, the step reads no
+    /// body's sleeping state.
+    pub sleeping: bool,
 }
 
 /// Times a step's phases one after the other, when asked to (a clock read per phase).
@@ -764,9 +767,12 @@ impl Solver {
         self.largest_kick_after = 0.0;
         let mut overflow = None;
         for (index, body) in bodies.iter().enumerate() {
+            // An asleep body given a speed in an earlier substep moves as an awake one until
+            // the step's end wakes it.
+            let asleep = ctx.sleeping && body.asleep && body.velocity() == DVec3::ZERO;
             let (acceleration, kicks) = if body.is_fixed() {
                 (DVec3::ZERO, Default::default())
-            } else if body.asleep && body.velocity() == DVec3::ZERO {
+            } else if asleep {
                 // Asleep: at rest, and nothing acts on it until something wakes it (see
                 // `Settings::sleep`); it still has its mass in every impact. What would act on
                 // it still sets the step's scales, as if it were awake: with nothing
@@ -834,9 +840,7 @@ impl Solver {
                 acceleration,
                 restitution: body.restitution(),
                 id: body.id(),
-                // An asleep body given a speed in an earlier substep moves as an awake one
-                // until the step's end wakes it.
-                asleep: body.asleep && body.velocity() == DVec3::ZERO,
+                asleep,
             });
         }
         self.strings = !self.strung.is_empty();

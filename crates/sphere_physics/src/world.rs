@@ -549,6 +549,7 @@ impl World {
                 toi: self.toi.as_deref(),
                 dt: sub_dt,
                 start_time: self.time + f64::from(k) * sub_dt,
+                sleeping: self.sleeper.asleep() > 0,
             };
             if let Err(index) = self.solver.step(&mut self.bodies, &ctx, &mut stats) {
                 // The refused substep wrote nothing back; undo the substeps before it, and

@@ -150,6 +150,11 @@ impl Sleeper {
             self.next_check = now + sleep.time / 4.0;
             self.fall_asleep(bodies, solver, sleep);
         }
+        debug_assert_eq!(
+            self.asleep,
+            bodies.iter().filter(|b| b.asleep).count(),
+            "the count of bodies asleep"
+        );
         self.quiet = !moving && self.asleep > 0 && self.asleep == dynamic;
         self.asleep > before
     }

@@ -1596,33 +1596,17 @@ impl Solver {
 
     /// The largest overlap between bodies (at least one dynamic), 0 if none.
     pub fn max_overlap(&mut self, bodies: &[Body]) -> f64 {
-        self.boxes.clear();
-        self.boxes.extend(
-            bodies
-                .iter()
-                .map(|b| Aabb::swept(b.position(), b.position(), b.radius(), 0.0)),
-        );
         let mut worst = 0.0f64;
-        self.order.clear();
-        match self.broad.sort(&self.boxes) {
-            Some(permutation) => self.order.extend_from_slice(permutation),
-            None => self.order.extend(0..bodies.len() as u32),
-        }
-        self.scratch_boxes.clear();
-        self.scratch_boxes
-            .extend(self.order.iter().map(|&i| self.boxes[i as usize]));
-        self.broad.build(&self.scratch_boxes);
-        let mut pairs = std::mem::take(&mut self.pairs);
-        self.broad.pairs(&self.scratch_boxes, &mut pairs, |i, j| {
-            let (a, b) = (
-                &bodies[self.order[i] as usize],
-                &bodies[self.order[j] as usize],
-            );
-            if !(a.is_fixed() && b.is_fixed()) {
-                worst = worst.max(overlap(a, b));
-            }
-        });
-        self.pairs = pairs;
+        self.pairs_near(
+            bodies,
+            |_| 0.0,
+            |i, j| {
+                let (a, b) = (&bodies[i], &bodies[j]);
+                if !(a.is_fixed() && b.is_fixed()) {
+                    worst = worst.max(overlap(a, b));
+                }
+            },
+        );
         worst
     }
 

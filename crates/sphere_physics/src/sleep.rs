@@ -220,22 +220,18 @@ impl Sleeper {
                 if gap(a, b.position(), b.radius()) > near {
                     return;
                 }
+                // A body touching a fixed one rests on it, or is kept awake if it moves.
+                let on = |fixed: &Body| {
+                    if fixed.velocity() == DVec3::ZERO {
+                        GROUNDED
+                    } else {
+                        BLOCKED
+                    }
+                };
                 match (a.is_fixed(), b.is_fixed()) {
                     (false, false) => union(parent, i, j),
-                    (true, false) => {
-                        flags[j] |= if a.velocity() == DVec3::ZERO {
-                            GROUNDED
-                        } else {
-                            BLOCKED
-                        }
-                    }
-                    (false, true) => {
-                        flags[i] |= if b.velocity() == DVec3::ZERO {
-                            GROUNDED
-                        } else {
-                            BLOCKED
-                        }
-                    }
+                    (true, false) => flags[j] |= on(a),
+                    (false, true) => flags[i] |= on(b),
                     (true, true) => {}
                 }
             },

@@ -118,8 +118,7 @@ impl Sleeper {
         bodies: &mut [Body],
         solver: &mut Solver,
         sleep: Sleep,
-        dt: f64,
-        now: f64,
+        (gravity, dt, now): (DVec3, f64, f64),
     ) -> bool {
         self.wake.clear();
         let mut ready = false;
@@ -134,7 +133,13 @@ impl Sleeper {
                 if body.desc.velocity != DVec3::ZERO || body.desc.position != body.rest {
                     self.wake.push(body.island);
                 }
-            } else if body.tether().is_none() && body.desc.velocity.length() < sleep.speed {
+            } else if body.tether().is_none()
+                && body.desc.velocity.length() < sleep.speed
+                // Resting needs something to rest against: with no acceleration a body at
+                // rest costs next to nothing, and one being moved out of an overlap (without
+                // speed) is not at rest.
+                && gravity + body.force() * body.inverse_mass() != DVec3::ZERO
+            {
                 // Calm this step: `calm > 0` from here on (see `ready_to_sleep`).
                 body.calm += dt;
                 ready |= ready_to_sleep(body, sleep);
@@ -202,7 +207,8 @@ impl Sleeper {
 
     /// Puts to sleep each group of touching dynamic bodies that is ready: every body asleep
     /// or calm for `sleep.time` (none on a string), one at least awake, one at least touching
-    /// a fixed sphere that does not move, and none touching one that does.
+    /// a fixed sphere that does not move, none touching one that does, and no pair deeper
+    /// into each other than [`SLEEP_CONTACT`] of the smaller radius.
     fn fall_asleep(&mut self, bodies: &mut [Body], solver: &mut Solver, sleep: Sleep) {
         let n = bodies.len();
         self.parent.clear();
@@ -217,8 +223,15 @@ impl Sleeper {
             |i, j| {
                 let (a, b) = (&view[i], &view[j]);
                 let near = SLEEP_CONTACT * a.radius().min(b.radius());
-                if gap(a, b.position(), b.radius()) > near {
+                let gap = gap(a, b.position(), b.radius());
+                if gap > near {
                     return;
+                }
+                if gap < -near {
+                    // Deeper than that, the pair is still being moved apart (without speed):
+                    // not at rest.
+                    flags[i] |= BLOCKED;
+                    flags[j] |= BLOCKED;
                 }
                 // A body touching a fixed one rests on it, or is kept awake if it moves.
                 let on = |fixed: &Body| {

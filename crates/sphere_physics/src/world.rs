@@ -89,22 +89,24 @@ pub struct Settings {
     /// below [`Sleep::speed`]. A group of dynamic bodies touching one another (within
     /// [`SLEEP_CONTACT`](crate::sleep::SLEEP_CONTACT) of the smaller radius) falls asleep
     /// together once every one of them has stayed calm for [`Sleep::time`] (checked a few times
-    /// in that time), provided it rests on a fixed sphere that does not move, none of them
-    /// hangs on a string and none touches a fixed sphere that moves: a body drifting slowly
-    /// through space never falls asleep. Falling asleep sets the bodies' velocities to zero
-    /// (that, and a sphere struck while asleep going without its acceleration for the rest of
-    /// that substep, are what sleeping changes in the motion). An asleep body is not
-    /// accelerated (neither gravity nor its force acts on it: its neighbours' support is what
-    /// it no longer needs) but is still a sphere of its mass, so whatever strikes it is
-    /// answered exactly. It wakes, with its whole group, after a step that moved it or gave it
-    /// any speed (an impact, or a body coming to rest on it; with substeps, a sphere given a
-    /// speed moves as an awake one from the next substep on), when it is changed or removed
-    /// through the world ([`World::set_desc`], [`World::set_velocity`],
-    /// [`World::set_position`], [`World::set_force`], [`World::remove_body`], or
-    /// [`World::wake`]), when a fixed sphere touching it is added, changed or removed, and when
-    /// gravity changes or sleeping is turned off. A world whose dynamic bodies are all asleep,
-    /// with no fixed body moving, takes its steps without work. [`Body::is_asleep`] and
-    /// [`StepStats::asleep`] tell.
+    /// in that time), provided it rests on a fixed sphere that does not move, every one of them
+    /// is accelerated (gravity, or its force), none hangs on a string, none touches a fixed
+    /// sphere that moves, and no two are deeper into each other than `SLEEP_CONTACT` of the
+    /// smaller radius (such a pair is still being moved apart): a body drifting slowly through
+    /// space, or anything in zero gravity with no force, never falls asleep. Falling asleep
+    /// sets the bodies' velocities to zero (that, and a sphere struck while asleep going
+    /// without its acceleration for the rest of that substep, are what sleeping changes in the
+    /// motion). An asleep body is not accelerated (neither gravity nor its force acts on it:
+    /// its neighbours' support is what it no longer needs) but is still a sphere of its mass,
+    /// so whatever strikes it is answered exactly. It wakes, with its whole group, after a step
+    /// that moved it or gave it any speed (an impact, or a body coming to rest on it; with
+    /// substeps, a sphere given a speed moves as an awake one from the next substep on), when
+    /// it is changed or removed through the world ([`World::set_desc`],
+    /// [`World::set_velocity`], [`World::set_position`], [`World::set_force`],
+    /// [`World::remove_body`], or [`World::wake`]), when a fixed sphere touching it is added,
+    /// changed or removed, and when gravity changes or sleeping is turned off. A world whose
+    /// dynamic bodies are all asleep, with no fixed body moving, takes its steps without work.
+    /// [`Body::is_asleep`] and [`StepStats::asleep`] tell.
     pub sleep: Option<Sleep>,
 }
 
@@ -573,9 +575,10 @@ impl World {
         std::mem::swap(&mut self.collisions, &mut self.solver.collisions);
         self.profile = self.solver.profile;
         if let Some(sleep) = sleep {
+            let step = (self.settings.gravity, dt, self.time);
             let fell_asleep =
                 self.sleeper
-                    .after_step(&mut self.bodies, &mut self.solver, sleep, dt, self.time);
+                    .after_step(&mut self.bodies, &mut self.solver, sleep, step);
             if fell_asleep {
                 // The solver summed them as it wrote the bodies back: now without the speeds
                 // of the bodies that fell asleep.

@@ -533,3 +533,30 @@ fn regression_a_moved_sphere_is_calm_only_from_then_on() {
         }
     }
 }
+
+/// A sphere placed deep inside a large fixed one is moved out a little each step, without
+/// speed: calm all the while, it fell asleep half way out, and stayed there.
+#[test]
+fn regression_a_sphere_being_moved_out_of_a_fixed_one_does_not_sleep_there() {
+    for gravity in [DVec3::new(0.0, -9.81, 0.0), DVec3::ZERO] {
+        let mut world = World::new(Settings {
+            sleep: Some(Sleep::default()),
+            ..Settings::with_gravity(gravity)
+        });
+        world.add_sphere(SphereDesc::new(10.0).fixed()).unwrap();
+        let ball = world
+            .add_sphere(
+                SphereDesc::new(0.5)
+                    .at(DVec3::new(0.0, 2.0, 0.0))
+                    .with_restitution(0.5),
+            )
+            .unwrap();
+        for _ in 0..900 {
+            world.step(DT).unwrap();
+        }
+        let overlap = world.max_overlap();
+        assert!(overlap < 1e-3, "gravity {gravity}: still {overlap} deep");
+        let at = world.body(ball).unwrap().position();
+        assert!(at.length() > 10.49, "gravity {gravity}: at {at}");
+    }
+}

@@ -1,7 +1,7 @@
 //! `sphere-fuzz`: random scenes stepped by the core, each checked for what must hold in it.
 //!
 //!     cargo run --release -p sphere_bench --bin sphere-fuzz -- [--from 0] [--count 5000]
-//!         [--strings none|slow|fast] [--wide] [--overlapping] [--substeps 1] [--sleep]
+//!         [--strings none|slow|fast] [--wide] [--overlapping] [--substeps 1] [--floor] [--sleep]
 //!
 //! Each seed makes a scene of 2 to 121 spheres in a box 1 to 40 m wide: one radius (0.1) or
 //! radii from 1 cm to 1 m, densities from 0.1 to 1000, restitutions from 0 to 1 (1 for about a
@@ -12,8 +12,9 @@
 //! strings a few radii long, at any speed; with `none` (the default) no strings. `--wide` adds
 //! the tutorial's bisection (3 scenes in 10), scenes up to 1e5 m from the origin, and radii from
 //! 2 mm to 5 m; `--overlapping` places spheres without keeping them apart. `--substeps k` takes
-//! k times as many steps, each k times shorter. `--sleep` turns sleeping on (`Sleep::default()`)
-//! in the same scenes.
+//! k times as many steps, each k times shorter. `--floor` puts a floor (a fixed sphere of
+//! radius 1e4) a metre under the box of each scene under gravity, for spheres to come to rest
+//! on; `--sleep` turns sleeping on (`Sleep::default()`) in the same scenes, with the floors.
 //!
 //! Every step of every scene is checked: positions and velocities finite; bit for bit the
 //! same in a second world built from the same seed; momentum kept where nothing outside
@@ -73,6 +74,8 @@ struct Options {
     overlapping: bool,
     substeps: u32,
     sleep: bool,
+    /// A floor under each scene with gravity.
+    floor: bool,
 }
 
 /// What a scene has, for the checks that depend on it.
@@ -176,6 +179,16 @@ fn scene(seed: u64, o: &Options) -> (World, Kind, f64, u32) {
         }
         world
             .add_sphere(sphere)
+            .expect("the fuzz makes valid spheres");
+    }
+    if o.floor && gravity {
+        // A floor under the box (drawing nothing from `r`), for spheres to come to rest and
+        // fall asleep on.
+        let floor = SphereDesc::new(1e4)
+            .at(offset - DVec3::Y * (span + 1.0 + 1e4))
+            .fixed();
+        world
+            .add_sphere(floor)
             .expect("the fuzz makes valid spheres");
     }
     let dt = 1.0 / r.range(30.0, 240.0) / f64::from(o.substeps);
@@ -320,7 +333,7 @@ fn run(
 }
 
 const USAGE: &str = "sphere-fuzz [--from 0] [--count 5000] [--strings none|slow|fast] [--wide] \
-[--overlapping] [--substeps 1] [--sleep]: random scenes stepped by the core and checked at every step \
+[--overlapping] [--substeps 1] [--floor] [--sleep]: random scenes stepped by the core and checked at every step \
 (finite, the same as a twin, momentum and energy where nothing outside acts, the reported \
 overlap); scenes ending a step with a pair more than 5% of the smaller radius into each other \
 are listed. Exit code 1 if any check failed. See crates/sphere_bench/src/bin/fuzz.rs.";
@@ -334,6 +347,7 @@ fn options() -> Result<Options, String> {
         overlapping: false,
         substeps: 1,
         sleep: false,
+        floor: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -361,7 +375,8 @@ fn options() -> Result<Options, String> {
             }
             "--wide" => o.wide = true,
             "--overlapping" => o.overlapping = true,
-            "--sleep" => o.sleep = true,
+            "--sleep" => (o.sleep, o.floor) = (true, true),
+            "--floor" => o.floor = true,
             _ => return Err(format!("unknown argument {flag} (see the file's docs)")),
         }
     }

@@ -1,7 +1,8 @@
 //! Once warmed up, a step allocates nothing: a counting allocator watches steps of a shower
 //! piling onto a dome (resting contacts, simultaneous groups, bodies leaving the grid), of a
-//! gas in a box of wall spheres, of a gas without walls spreading out, and of a crowd placed
-//! overlapping with no gravity moved apart; nor do the setters
+//! gas in a box of wall spheres, of a gas without walls spreading out, of a crowd placed
+//! overlapping with no gravity moved apart, and of a pit with sleeping on, woken and falling
+//! asleep again; nor do the setters
 //! a game calls every frame (velocity, force, position).
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -99,6 +100,27 @@ fn a_warmed_up_step_allocates_nothing() {
     }
     let crowd_allocations = allocations(&mut world, 3, 20);
     assert!(world.stats().separated > 0, "still moving apart");
+    // A pit with sleeping on: warmed up until it is asleep, then woken, and watched through
+    // its calm second until it falls asleep again (the grouping's buffers, the quiet steps).
+    let pit = SceneDesc::from_ron(
+        r#"(name: "pit", gravity: (0.0, -9.81, 0.0), restitution: 0.5, sleep: (),
+            spheres: [
+                (position: (0.0, -10000.0, 0.0), radius: 10000.0, fixed: true),
+                (position: (-10000.3, 0.0, 0.0), radius: 10000.0, fixed: true),
+                (position: (10000.3, 0.0, 0.0), radius: 10000.0, fixed: true),
+                (position: (0.0, 0.0, -10000.3), radius: 10000.0, fixed: true),
+                (position: (0.0, 0.0, 10000.3), radius: 10000.0, fixed: true)],
+            generate: [Shower(count: 150, seed: 2, min: (-0.3, 0.0, -0.3), max: (0.3, 1.0, 0.3),
+                              radius: 0.05)])"#,
+    )
+    .unwrap();
+    let mut world = pit.build().unwrap();
+    let _ = allocations(&mut world, 900, 0);
+    assert_eq!(world.stats().asleep, 150, "the pit fell asleep");
+    let first = world.bodies()[5].id();
+    world.wake(first).unwrap();
+    let pit_allocations = allocations(&mut world, 0, 150);
+    assert_eq!(world.stats().asleep, 150, "the pit fell asleep again");
     // A game that sets every sphere's velocity, force and position each frame: no allocation
     // either (each change used to be checked on a copy of the sphere's description, name and
     // all: 300 allocations here).
@@ -127,8 +149,9 @@ fn a_warmed_up_step_allocates_nothing() {
             gas_allocations,
             spreading_allocations,
             crowd_allocations,
+            pit_allocations,
             setter_allocations
         ),
-        (0, 0, 0, 0, 0)
+        (0, 0, 0, 0, 0, 0)
     );
 }

@@ -387,6 +387,11 @@ impl Body {
     pub fn is_fixed(&self) -> bool {
         self.desc.fixed
     }
+    /// What acts on the body under `gravity`, per unit mass: gravity plus its force over its
+    /// mass (a fixed body's is not used: nothing moves it).
+    pub(crate) fn acceleration(&self, gravity: DVec3) -> DVec3 {
+        gravity + self.desc.force * self.inverse_mass
+    }
     /// Whether the body is asleep: at rest with every body it touches, neither stepped nor
     /// acted on until something wakes it (see [`Settings::sleep`](crate::Settings::sleep)).
     pub fn is_asleep(&self) -> bool {

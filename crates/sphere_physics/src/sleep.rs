@@ -138,7 +138,7 @@ impl Sleeper {
                 // Resting needs something to rest against: with no acceleration a body at
                 // rest costs next to nothing, and one being moved out of an overlap (without
                 // speed) is not at rest.
-                && gravity + body.force() * body.inverse_mass() != DVec3::ZERO
+                && body.acceleration(gravity) != DVec3::ZERO
             {
                 // Calm this step: `calm > 0` from here on (see `ready_to_sleep`).
                 body.calm += dt;

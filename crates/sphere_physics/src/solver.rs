@@ -780,12 +780,12 @@ impl Solver {
                 // press into one another as they settled.
                 dynamic += 1;
                 self.any_asleep = true;
-                let a = settings.gravity + body.force() * body.inverse_mass();
+                let a = body.acceleration(settings.gravity);
                 largest_acceleration = largest_acceleration.max(a.abs().max_element());
                 (DVec3::ZERO, Default::default())
             } else {
                 dynamic += 1;
-                let a = settings.gravity + body.force() * body.inverse_mass();
+                let a = body.acceleration(settings.gravity);
                 largest_acceleration = largest_acceleration.max(a.abs().max_element());
                 let k = match ctx.integrator {
                     Some(custom) => custom.kicks(body.velocity(), a, dt),

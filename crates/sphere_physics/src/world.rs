@@ -648,7 +648,7 @@ impl World {
                 acceleration: if body.is_fixed() {
                     DVec3::ZERO
                 } else {
-                    self.settings.gravity + body.force() * body.inverse_mass()
+                    body.acceleration(self.settings.gravity)
                 },
                 radius: body.radius(),
             })

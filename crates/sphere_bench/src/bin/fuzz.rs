@@ -13,8 +13,9 @@
 //! the tutorial's bisection (3 scenes in 10), scenes up to 1e5 m from the origin, and radii from
 //! 2 mm to 5 m; `--overlapping` places spheres without keeping them apart. `--substeps k` takes
 //! k times as many steps, each k times shorter. `--floor` puts a floor (a fixed sphere of
-//! radius 1e4) a metre under the box of each scene under gravity, for spheres to come to rest
-//! on; `--sleep` turns sleeping on (`Sleep::default()`) in the same scenes, with the floors.
+//! radius 1e4) a metre under the box of each scene under gravity (or a millimetre under its
+//! lowest sphere, where one reaches lower), for spheres to come to rest on; `--sleep` turns
+//! sleeping on (`Sleep::default()`) in the same scenes, with the floors.
 //!
 //! Every step of every scene is checked: positions and velocities finite; bit for bit the
 //! same in a second world built from the same seed; momentum kept where nothing outside
@@ -183,9 +184,19 @@ fn scene(seed: u64, o: &Options) -> (World, Kind, f64, u32) {
     }
     if o.floor && gravity {
         // A floor under the box (drawing nothing from `r`), for spheres to come to rest and
-        // fall asleep on.
+        // fall asleep on: a metre under the box, or a millimetre under the lowest sphere where
+        // one reaches lower (`--wide` has spheres of up to 5 m), so that none starts in it.
+        let bottom = placed
+            .iter()
+            .map(|&(p, radius)| p.y - offset.y - radius)
+            .fold(f64::INFINITY, f64::min);
+        let top = if bottom < -span - 1.0 {
+            bottom - 1e-3
+        } else {
+            -span - 1.0
+        };
         let floor = SphereDesc::new(1e4)
-            .at(offset - DVec3::Y * (span + 1.0 + 1e4))
+            .at(offset + DVec3::Y * (top - 1e4))
             .fixed();
         world
             .add_sphere(floor)

@@ -1,0 +1,330 @@
+//! What a game may do to its spheres, done at random between frames: spawn and despawn them,
+//! change, add and remove their components (good values and bad), disable them, pause, single
+//! step, reset the simulation with new settings (sleeping on or off). Nothing may panic; after
+//! every frame each body in the core belongs to a live, enabled, unrejected sphere entity and
+//! each such entity has its body, positions and transforms are finite, the diagnostics count
+//! what the core holds, and the same frames give the same spheres, bit for bit. (Despawning a
+//! floor under a resting ball once crashed the next step.)
+
+use std::time::Duration;
+
+use bevy::ecs::entity_disabling::Disabled;
+use bevy::ecs::query::Allow;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_sphere_physics::prelude::*;
+use bevy_sphere_physics::sphere_physics::Settings;
+use bevy_sphere_physics::{ResetSpherePhysics, SpherePhysicsWorld};
+
+/// 1/64 s, as the plugin's tests use.
+const STEP: Duration = Duration::from_nanos(15_625_000);
+
+/// xorshift64*: a small generator, so a failing seed repeats.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+
+    fn chance(&mut self, p: f64) -> bool {
+        self.range(0.0, 1.0) < p
+    }
+
+    /// Mostly in `[lo, hi)`, now and then NaN, infinite, negative or zero.
+    fn value(&mut self, lo: f64, hi: f64) -> f64 {
+        match self.below(64) {
+            0 => f64::NAN,
+            1 => f64::INFINITY,
+            2 => -1.0,
+            3 => 0.0,
+            _ => self.range(lo, hi),
+        }
+    }
+
+    fn vector(&mut self, scale: f64) -> DVec3 {
+        DVec3::new(
+            self.range(-scale, scale),
+            self.range(-scale, scale),
+            self.range(-scale, scale),
+        )
+    }
+
+    /// Now and then with a component that is not finite.
+    fn maybe_bad_vector(&mut self, scale: f64) -> DVec3 {
+        let v = self.vector(scale);
+        match self.below(48) {
+            0 => DVec3::new(f64::NAN, v.y, v.z),
+            1 => DVec3::new(v.x, f64::INFINITY, v.z),
+            _ => v,
+        }
+    }
+}
+
+fn app(sleep: bool) -> App {
+    let mut plugin = SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * 9.81);
+    if sleep {
+        plugin = plugin.sleep(Sleep {
+            speed: 0.2,
+            time: 0.25,
+        });
+    }
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, plugin))
+        .insert_resource(Time::<Fixed>::from_duration(STEP))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(STEP));
+    app
+}
+
+/// A pit 0.6 m across (a floor and four walls, fixed spheres of radius 1e4), and balls over
+/// it.
+fn spawn_scene(app: &mut App, rng: &mut Rng) {
+    let (wall, half) = (1.0e4, 0.3);
+    for at in [
+        DVec3::new(0.0, -wall, 0.0),
+        DVec3::new(-wall - half, 0.0, 0.0),
+        DVec3::new(wall + half, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -wall - half),
+        DVec3::new(0.0, 0.0, wall + half),
+    ] {
+        app.world_mut()
+            .spawn((SphereBody::new(wall), SpherePosition(at), FixedSphere));
+    }
+    for _ in 0..12 + rng.below(24) {
+        let at = DVec3::new(
+            rng.range(-0.2, 0.2),
+            rng.range(0.05, 1.5),
+            rng.range(-0.2, 0.2),
+        );
+        app.world_mut()
+            .spawn((SphereBody::new(0.05), SpherePosition(at)));
+    }
+}
+
+/// The sphere entities, in entity order.
+fn spheres(app: &mut App) -> Vec<Entity> {
+    let mut all: Vec<Entity> = app
+        .world_mut()
+        .query_filtered::<Entity, (With<SphereBody>, Allow<Disabled>)>()
+        .iter(app.world())
+        .collect();
+    all.sort();
+    all
+}
+
+/// A string from above `at` (now and then of a bad length, or too short to reach).
+fn tether(rng: &mut Rng, at: DVec3) -> Tethered {
+    let length = rng.value(0.3, 2.0);
+    let reach = if length.is_finite() { length } else { 1.0 };
+    Tethered {
+        anchor: at + DVec3::Y * reach * rng.range(0.5, 1.02),
+        length,
+    }
+}
+
+/// One random thing a game does between frames.
+fn change(app: &mut App, rng: &mut Rng) {
+    let all = spheres(app);
+    let target = (!all.is_empty()).then(|| all[rng.below(all.len() as u64) as usize]);
+    let world = app.world_mut();
+    match (rng.below(20), target) {
+        (0..=3, _) => {
+            let at = DVec3::new(
+                rng.range(-0.2, 0.2),
+                rng.range(0.0, 1.5),
+                rng.range(-0.2, 0.2),
+            );
+            let mut sphere = world.spawn((
+                SphereBody::new(rng.value(0.03, 0.12)),
+                SpherePosition(at),
+                SphereVelocity(rng.maybe_bad_vector(2.0)),
+            ));
+            if rng.chance(0.3) {
+                sphere.insert(Density(rng.value(0.5, 20.0)));
+            }
+            if rng.chance(0.3) {
+                sphere.insert(Restitution(rng.value(0.0, 1.0)));
+            }
+            if rng.chance(0.1) {
+                sphere.insert(FixedSphere);
+            }
+            if rng.chance(0.1) {
+                sphere.insert(tether(rng, at));
+            }
+        }
+        (4..=5, Some(e)) => {
+            world.despawn(e);
+        }
+        (6, Some(e)) => {
+            if let Some(mut v) = world.get_mut::<SphereVelocity>(e) {
+                v.0 = rng.maybe_bad_vector(3.0);
+            }
+        }
+        (7, Some(e)) => {
+            let at = rng.maybe_bad_vector(0.2) + DVec3::Y * 0.5;
+            world.entity_mut(e).insert(SpherePosition(at));
+        }
+        (8, Some(e)) => {
+            if let Some(mut body) = world.get_mut::<SphereBody>(e) {
+                body.radius = rng.value(0.03, 0.12);
+            }
+        }
+        (9, Some(e)) => {
+            world.entity_mut(e).insert(Density(rng.value(0.5, 20.0)));
+        }
+        (10, Some(e)) => {
+            world.entity_mut(e).insert(Restitution(rng.value(0.0, 1.0)));
+        }
+        (11, Some(e)) => {
+            world
+                .entity_mut(e)
+                .insert(AppliedForce(rng.maybe_bad_vector(5.0)));
+        }
+        (12, Some(e)) => {
+            let mut entity = world.entity_mut(e);
+            if entity.contains::<FixedSphere>() {
+                entity.remove::<FixedSphere>();
+            } else {
+                entity.insert(FixedSphere);
+            }
+        }
+        (13, Some(e)) => {
+            let mut entity = world.entity_mut(e);
+            if entity.contains::<Tethered>() {
+                entity.remove::<Tethered>();
+            } else {
+                let at = entity.get::<SpherePosition>().map_or(DVec3::ZERO, |p| p.0);
+                entity.insert(tether(rng, at));
+            }
+        }
+        (14, Some(e)) => {
+            let mut entity = world.entity_mut(e);
+            match rng.below(4) {
+                0 => entity.remove::<SphereVelocity>(),
+                1 => entity.remove::<Density>(),
+                2 => entity.remove::<AppliedForce>(),
+                _ => entity.remove::<Restitution>(),
+            };
+        }
+        (15, Some(e)) => {
+            let mut entity = world.entity_mut(e);
+            if entity.contains::<Disabled>() {
+                entity.remove::<Disabled>();
+            } else {
+                entity.insert(Disabled);
+            }
+        }
+        (16, _) if rng.chance(0.3) => {
+            // Paused now and then, for a few frames: a step or two, then on again.
+            let mut clock = world.resource_mut::<SpherePhysicsClock>();
+            if !clock.paused || rng.chance(0.5) {
+                clock.toggle();
+            } else {
+                clock.step_once();
+            }
+        }
+        (17, _) if rng.chance(0.1) => {
+            let mut settings = Settings::with_gravity(DVec3::NEG_Y * 9.81);
+            if rng.chance(0.6) {
+                settings.sleep = Some(Sleep::default());
+            }
+            if rng.chance(0.2) {
+                settings.substeps = 1 + rng.below(3) as u32;
+            }
+            world.commands().queue(ResetSpherePhysics::new(settings));
+            world.flush();
+        }
+        _ => {}
+    }
+}
+
+/// The state after a frame, checked.
+fn check(app: &mut App) -> Vec<(Entity, DVec3, DVec3)> {
+    let all = spheres(app);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    for body in physics.world.bodies() {
+        let entity = physics
+            .entity(body.id())
+            .unwrap_or_else(|| panic!("body {:?} has no entity", body.id()));
+        let e = app
+            .world()
+            .get_entity(entity)
+            .unwrap_or_else(|_| panic!("body {:?}'s entity {entity} is gone", body.id()));
+        assert!(e.contains::<SphereBody>(), "{entity}");
+        assert!(!e.contains::<RejectedSphere>(), "{entity}");
+        assert!(!e.contains::<Disabled>(), "{entity}");
+        assert_eq!(physics.body(entity), Some(body.id()));
+        assert!(body.position().is_finite() && body.velocity().is_finite());
+        if body.is_asleep() {
+            assert_eq!(body.velocity(), DVec3::ZERO);
+        }
+    }
+    let mut state = Vec::new();
+    for entity in all {
+        let e = app.world().entity(entity);
+        let Some(body) = physics.body(entity) else {
+            continue;
+        };
+        assert!(!e.contains::<RejectedSphere>(), "{entity}");
+        assert!(!e.contains::<Disabled>(), "{entity}");
+        let in_core = physics.world.body(body).unwrap();
+        let transform = e.get::<Transform>().unwrap();
+        assert!(transform.translation.is_finite(), "{entity}: {transform:?}");
+        let at = e.get::<SpherePosition>().unwrap().0;
+        assert_eq!(at, in_core.position(), "{entity}");
+        let v = e.get::<SphereVelocity>().map_or(DVec3::ZERO, |v| v.0);
+        state.push((entity, at, v));
+    }
+    state
+}
+
+fn play(seed: u64, frames: u32) -> Vec<Vec<(Entity, DVec3, DVec3)>> {
+    let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut app = app(rng.chance(0.6));
+    spawn_scene(&mut app, &mut rng);
+    let mut states = Vec::new();
+    for _ in 0..frames {
+        // A change every third frame or so, to let the spheres settle (and fall asleep).
+        if rng.chance(0.35) {
+            change(&mut app, &mut rng);
+        }
+        let mut clock = app.world_mut().resource_mut::<SpherePhysicsClock>();
+        if clock.paused && rng.chance(0.2) {
+            clock.toggle();
+        }
+        for _ in 0..1 + rng.below(6) {
+            app.update();
+        }
+        states.push(check(&mut app));
+    }
+    states
+}
+
+/// Seeds 0 to 5; `RANDOM_CHANGES_FROM` and `RANDOM_CHANGES_SEEDS` run others.
+#[test]
+fn random_changes_between_frames_are_safe_and_repeat() {
+    let env = |name: &str, default: u64| {
+        std::env::var(name)
+            .ok()
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(default)
+    };
+    let from = env("RANDOM_CHANGES_FROM", 0);
+    for seed in from..from + env("RANDOM_CHANGES_SEEDS", 6) {
+        let first = play(seed, 600);
+        let second = play(seed, 600);
+        assert!(first == second, "seed {seed}: two runs differ");
+    }
+}

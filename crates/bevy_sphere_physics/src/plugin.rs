@@ -10,7 +10,7 @@ use crate::events::{SphereCollision, SphereRejected};
 use crate::resources::{
     SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld, SphereShownTime,
 };
-use crate::systems::{self, PluginOptions, RemovedSpheres, RunawaySpheres, Stepped};
+use crate::systems::{self, PluginOptions, RemovedSpheres, RescanSpheres, RunawaySpheres, Stepped};
 
 /// The plugin's stages in [`FixedUpdate`], chained in this order. Put a game's systems
 /// `.before(..)` or `.after(..)` any of them, e.g. apply thrust before `Prepare` or read
@@ -138,7 +138,9 @@ impl Plugin for SpherePhysicsPlugin {
             .init_resource::<Stepped>()
             .init_resource::<RemovedSpheres>()
             .init_resource::<RunawaySpheres>()
+            .init_resource::<RescanSpheres>()
             .add_observer(systems::record_removal)
+            .add_observer(systems::record_part_removal)
             .add_message::<SphereCollision>()
             .add_message::<SphereRejected>()
             .register_type::<SphereBody>()

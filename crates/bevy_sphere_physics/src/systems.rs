@@ -32,6 +32,57 @@ pub(crate) fn record_removal(removed: On<Remove, SphereBody>, mut queue: ResMut<
     queue.0.push(removed.entity);
 }
 
+/// Set when a component a sphere's description reads (or `Disabled`) is removed from any
+/// entity: the next `Prepare` then looks at every sphere, not only those whose components
+/// changed (a removed component means its default, and an enabled sphere joins again).
+/// Recorded by an observer, as removals are, so none is missed on frames without a fixed step.
+#[derive(Resource, Debug)]
+pub(crate) struct RescanSpheres(pub bool);
+
+impl Default for RescanSpheres {
+    fn default() -> Self {
+        Self(true)
+    }
+}
+
+/// Asks the next `Prepare` to look at every sphere (see [`RescanSpheres`]).
+#[allow(clippy::type_complexity)]
+pub(crate) fn record_part_removal(
+    _: On<
+        Remove,
+        (
+            SpherePosition,
+            SphereVelocity,
+            Density,
+            Restitution,
+            AppliedForce,
+            FixedSphere,
+            Tethered,
+            Disabled,
+        ),
+    >,
+    mut rescan: ResMut<RescanSpheres>,
+) {
+    rescan.0 = true;
+}
+
+/// The spheres `Prepare` must look at when nothing else has changed: those whose components
+/// were added or changed since its last run (by the game, or by `Writeback` for the spheres
+/// that moved). An asleep sphere, which `Writeback` leaves alone, is not among them.
+type ChangedSphere = (
+    With<SphereBody>,
+    Or<(
+        Changed<SpherePosition>,
+        Changed<SphereVelocity>,
+        Changed<SphereBody>,
+        Changed<Density>,
+        Changed<Restitution>,
+        Changed<AppliedForce>,
+        Changed<FixedSphere>,
+        Changed<Tethered>,
+    )>,
+);
+
 /// Spheres the last `Step` left out (they would have left the finite range), reported by the
 /// next `Prepare`: `SphereRejected` messages are all written there, so a game system that
 /// reads them needs no order against `Step`.
@@ -202,13 +253,26 @@ pub(crate) fn prepare(
     mut physics: ResMut<SpherePhysicsWorld>,
     mut removed: ResMut<RemovedSpheres>,
     spheres: Query<SphereQuery>,
+    changed: Query<SphereQuery, ChangedSphere>,
+    mut rescan: ResMut<RescanSpheres>,
     options: Res<PluginOptions>,
     mut rejected: MessageWriter<SphereRejected>,
     orders: Query<&SphereOrder>,
     disabled: Query<Entity, (With<SphereBody>, With<Disabled>)>,
     mut runaways: ResMut<RunawaySpheres>,
 ) {
-    let physics = &mut *physics;
+    // Every sphere is looked at while none is asleep (all that move are written back at
+    // every step, and a plain scan is then the cheaper), when the core world was changed from
+    // outside the plugin (a game's change to a body, undone here; a body removed, registered
+    // again; a reset), when the options changed, or when a component was removed; else only
+    // the spheres whose components changed: the others still match their bodies (the
+    // plugin's own changes to the world, here and in `Step`, do not count as changes to the
+    // resource).
+    let every = std::mem::take(&mut rescan.0)
+        | physics.is_changed()
+        | options.is_changed()
+        | (physics.world.stats().asleep == 0);
+    let physics = physics.bypass_change_detection();
     rejected.write_batch(runaways.0.drain(..));
     for entity in removed.0.drain(..) {
         if let Some(id) = physics.bodies.remove(&entity) {
@@ -241,59 +305,74 @@ pub(crate) fn prepare(
     };
     // New spheres by `SphereOrder`, then entity: ids never depend on query order.
     let mut new = Vec::new();
-    for item in &spheres {
-        let entity = item.0;
-        // The handle can outlive the body for one step after the entity was removed and
-        // re-added: trust the map.
-        let id = item
-            .12
-            .map(|h| h.0)
-            .filter(|id| physics.entities.get(id) == Some(&entity));
-        match id.or_else(|| physics.bodies.get(&entity).copied()) {
-            Some(id) => {
-                let Some(body) = physics.world.body(id) else {
-                    // Removed from the core by the game: register it anew.
-                    physics.bodies.remove(&entity);
-                    physics.entities.remove(&id);
-                    new.push(entity);
-                    continue;
-                };
-                if item.3.is_none() {
-                    // Its `SpherePosition` was removed: the plugin's output, put back (the body
-                    // stays where the core has it).
-                    commands.entity(entity).try_insert((
-                        SpherePosition(body.position()),
-                        PreviousSpherePosition(body.position()),
-                    ));
-                }
-                if matches(body, &item, &options) {
-                    continue;
-                }
-                if same_shape(body, &item, &options) && steer(&mut physics.world, id, &item) {
-                    continue;
-                }
-                let Some(body) = physics.world.body(id) else {
-                    continue;
-                };
-                let desc = describe(&item, &options, Some(body));
-                if let Err(error) = physics.world.set_desc(id, desc.clone()) {
-                    physics.world.remove_body(id);
-                    physics.bodies.remove(&entity);
-                    physics.entities.remove(&id);
-                    commands.entity(entity).try_remove::<SphereHandle>();
-                    if let sphere_physics::WorldError::Body(error) = error {
-                        // Kept as the retry below describes it (with no body to take a missing
-                        // state from), so that only a change of its components retries it.
-                        reject(
-                            &mut commands,
-                            entity,
-                            describe(&item, &options, None),
-                            error,
-                        );
+    // What is done for each sphere looked at, in either scan (a macro: as a closure called
+    // for each, or with the two scans chained into one loop, a scene of 3000 moving spheres
+    // took 15% and 75% longer).
+    macro_rules! look_at {
+        ($item:expr) => {{
+            let item = $item;
+            let entity = item.0;
+            // The handle can outlive the body for one step after the entity was removed and
+            // re-added: trust the map.
+            let id = item
+                .12
+                .map(|h| h.0)
+                .filter(|id| physics.entities.get(id) == Some(&entity));
+            match id.or_else(|| physics.bodies.get(&entity).copied()) {
+                Some(id) => {
+                    let Some(body) = physics.world.body(id) else {
+                        // Removed from the core by the game: register it anew.
+                        physics.bodies.remove(&entity);
+                        physics.entities.remove(&id);
+                        new.push(entity);
+                        continue;
+                    };
+                    if item.3.is_none() {
+                        // Its `SpherePosition` was removed: the plugin's output, put back (the body
+                        // stays where the core has it).
+                        commands.entity(entity).try_insert((
+                            SpherePosition(body.position()),
+                            PreviousSpherePosition(body.position()),
+                        ));
+                    }
+                    if matches(body, &item, &options) {
+                        continue;
+                    }
+                    if same_shape(body, &item, &options) && steer(&mut physics.world, id, &item) {
+                        continue;
+                    }
+                    let Some(body) = physics.world.body(id) else {
+                        continue;
+                    };
+                    let desc = describe(&item, &options, Some(body));
+                    if let Err(error) = physics.world.set_desc(id, desc.clone()) {
+                        physics.world.remove_body(id);
+                        physics.bodies.remove(&entity);
+                        physics.entities.remove(&id);
+                        commands.entity(entity).try_remove::<SphereHandle>();
+                        if let sphere_physics::WorldError::Body(error) = error {
+                            // Kept as the retry below describes it (with no body to take a missing
+                            // state from), so that only a change of its components retries it.
+                            reject(
+                                &mut commands,
+                                entity,
+                                describe(&item, &options, None),
+                                error,
+                            );
+                        }
                     }
                 }
+                None => new.push(entity),
             }
-            None => new.push(entity),
+        }};
+    }
+    if every {
+        for item in &spheres {
+            look_at!(item);
+        }
+    } else {
+        for item in &changed {
+            look_at!(item);
         }
     }
     new.sort_unstable_by_key(|&e| (orders.get(e).map_or(u64::MAX, |o| o.0), e));
@@ -348,7 +427,8 @@ pub(crate) fn step(
         return;
     }
     let started = Instant::now();
-    let physics = &mut *physics;
+    // The plugin's own change: not one `Prepare` must look at every sphere for.
+    let physics = physics.bypass_change_detection();
     // Each retry leaves one sphere out, so this ends; the bound only caps one step's work.
     let mut result = physics.world.step(time.delta_secs_f64()).copied();
     for _ in 0..64 {
@@ -419,18 +499,47 @@ pub(crate) fn writeback(
         Option<&mut SphereVelocity>,
     )>,
 ) {
+    // With a sphere asleep, each component is written only if it changes (to the bit), so
+    // that `Prepare` need not look at the spheres that did not move, nor a game system that
+    // asks for changed positions; with none asleep, every one is written (comparing them
+    // took a scene of 3000 moving spheres 40% longer here).
+    let compare = physics.world.stats().asleep > 0;
     for (handle, mut position, mut previous, velocity) in &mut spheres {
         let Some(body) = physics.world.body(handle.0) else {
             continue;
         };
-        previous.0 = position.0;
+        if !compare {
+            previous.0 = position.0;
+            if stepped.0 {
+                position.0 = body.position();
+                if let Some(mut velocity) = velocity {
+                    velocity.0 = body.velocity();
+                }
+            }
+            continue;
+        }
+        if !same_bits(previous.0, position.0) {
+            previous.0 = position.0;
+        }
         if stepped.0 {
-            position.0 = body.position();
-            if let Some(mut velocity) = velocity {
+            if !same_bits(position.0, body.position()) {
+                position.0 = body.position();
+            }
+            if let Some(mut velocity) = velocity
+                && !same_bits(velocity.0, body.velocity())
+            {
                 velocity.0 = body.velocity();
             }
         }
     }
+}
+
+/// Whether `a` and `b` are the same to the bit (a zero's sign included).
+#[inline]
+fn same_bits(a: DVec3, b: DVec3) -> bool {
+    a.x.to_bits() == b.x.to_bits()
+        && a.y.to_bits() == b.y.to_bits()
+        && a.z.to_bits() == b.z.to_bits()
 }
 
 /// [`SpherePhysicsSystems::Notify`](crate::SpherePhysicsSystems::Notify): a [`SphereCollision`]

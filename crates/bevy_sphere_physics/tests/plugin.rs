@@ -1244,3 +1244,86 @@ fn a_sphere_at_rest_falls_asleep_and_a_game_wakes_it() {
     let moved = position(&app, ball) - at;
     assert!((moved.x - dt).abs() < 1e-6, "{moved}");
 }
+
+/// Spheres whose components changed since the last step (counted after `Writeback`).
+#[derive(Resource, Default)]
+struct ChangedPositions(usize);
+
+/// While spheres sleep, `Prepare` looks only at those whose components changed and
+/// `Writeback` leaves the asleep ones' components alone (a game asking for changed positions
+/// sees none); every way a game changes a sphere still reaches the core: a component set, one
+/// removed (its default), a sphere disabled and enabled, and a change made to the core's body
+/// directly (undone, as the components are the truth).
+#[test]
+fn asleep_spheres_are_left_alone_and_every_change_still_reaches_them() {
+    let plugin = SpherePhysicsPlugin::default()
+        .gravity(DVec3::NEG_Y * 9.81)
+        .restitution(0.5)
+        .sleep(sphere_physics::Sleep::default());
+    let mut app = app(plugin);
+    app.init_resource::<ChangedPositions>().add_systems(
+        FixedUpdate,
+        (|moved: Query<(), Changed<SpherePosition>>, mut count: ResMut<ChangedPositions>| {
+            count.0 = moved.iter().count();
+        })
+        .after(SpherePhysicsSystems::Writeback),
+    );
+    let (_, a) = ball_on_a_floor(&mut app);
+    let b = ball(&mut app, DVec3::new(3.0, 0.5, 0.0), DVec3::ZERO);
+    app.world_mut().entity_mut(b).insert(Density(5.0));
+    let body = |app: &App, e: Entity| {
+        let physics = app.world().resource::<SpherePhysicsWorld>();
+        physics.world.body(physics.body(e)?).cloned()
+    };
+    let asleep = |app: &App| {
+        app.world()
+            .resource::<SpherePhysicsDiagnostics>()
+            .last
+            .asleep
+    };
+    run_steps(&mut app, 90);
+    assert_eq!(asleep(&app), 2);
+    run_steps(&mut app, 2);
+    assert_eq!(app.world().resource::<ChangedPositions>().0, 0);
+    let at_a = position(&app, a);
+
+    // A change made to the core's body directly is undone (and wakes it).
+    let id = app.world().get::<SphereHandle>(a).unwrap().0;
+    let mut physics = app.world_mut().resource_mut::<SpherePhysicsWorld>();
+    physics.world.set_velocity(id, DVec3::X).unwrap();
+    run_steps(&mut app, 1);
+    assert!(body(&app, a).unwrap().velocity().x.abs() < 1e-12);
+    assert!((position(&app, a).x - at_a.x).abs() < 1e-12);
+
+    // A component removed means its default.
+    assert_eq!(body(&app, b).unwrap().density(), 5.0);
+    app.world_mut().entity_mut(b).remove::<Density>();
+    run_steps(&mut app, 1);
+    assert_eq!(body(&app, b).unwrap().density(), 1.0);
+
+    // Disabled, it leaves; enabled again, it joins where it was.
+    run_steps(&mut app, 90);
+    assert_eq!(asleep(&app), 2);
+    let disabled = bevy::ecs::entity_disabling::Disabled;
+    app.world_mut().entity_mut(a).insert(disabled);
+    run_steps(&mut app, 1);
+    assert!(body(&app, a).is_none());
+    run_steps(&mut app, 90);
+    assert_eq!(asleep(&app), 1);
+    app.world_mut()
+        .entity_mut(a)
+        .remove::<bevy::ecs::entity_disabling::Disabled>();
+    run_steps(&mut app, 1);
+    assert!((body(&app, a).unwrap().position() - at_a).length() < 1e-9);
+
+    // A component set on an asleep sphere wakes it.
+    run_steps(&mut app, 90);
+    assert_eq!(asleep(&app), 2);
+    let at_b = position(&app, b);
+    app.world_mut().entity_mut(b).insert(AppliedForce(DVec3::X));
+    run_steps(&mut app, 1);
+    // It wakes, alone: the other ball is a group of its own.
+    assert!(!body(&app, b).unwrap().is_asleep());
+    assert_eq!(asleep(&app), 1);
+    assert!(position(&app, b).x > at_b.x);
+}

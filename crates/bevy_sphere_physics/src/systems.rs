@@ -328,8 +328,8 @@ pub(crate) fn prepare(
                         continue;
                     };
                     if item.3.is_none() {
-                        // Its `SpherePosition` was removed: the plugin's output, put back (the body
-                        // stays where the core has it).
+                        // Its `SpherePosition` was removed: the plugin's output, put back (the
+                        // body stays where the core has it).
                         commands.entity(entity).try_insert((
                             SpherePosition(body.position()),
                             PreviousSpherePosition(body.position()),
@@ -351,8 +351,9 @@ pub(crate) fn prepare(
                         physics.entities.remove(&id);
                         commands.entity(entity).try_remove::<SphereHandle>();
                         if let sphere_physics::WorldError::Body(error) = error {
-                            // Kept as the retry below describes it (with no body to take a missing
-                            // state from), so that only a change of its components retries it.
+                            // Kept as the retry below describes it (with no body to take a
+                            // missing state from), so that only a change of its components
+                            // retries it.
                             reject(
                                 &mut commands,
                                 entity,

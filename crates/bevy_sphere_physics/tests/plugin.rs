@@ -1218,13 +1218,17 @@ fn regression_despawning_the_floor_under_a_resting_ball() {
     assert!((v.y + 9.81 * 5.0 * dt).abs() < 1e-9, "{v}");
 }
 
-#[test]
-fn a_sphere_at_rest_falls_asleep_and_a_game_wakes_it() {
-    let plugin = SpherePhysicsPlugin::default()
+/// Earth gravity, restitution 0.5, and sleeping on (`Sleep::default()`).
+fn sleeping_under_gravity() -> SpherePhysicsPlugin {
+    SpherePhysicsPlugin::default()
         .gravity(DVec3::NEG_Y * 9.81)
         .restitution(0.5)
-        .sleep(sphere_physics::Sleep::default());
-    let mut app = app(plugin);
+        .sleep(sphere_physics::Sleep::default())
+}
+
+#[test]
+fn a_sphere_at_rest_falls_asleep_and_a_game_wakes_it() {
+    let mut app = app(sleeping_under_gravity());
     let (_, ball) = ball_on_a_floor(&mut app);
     let asleep = |app: &App| {
         let diagnostics = app.world().resource::<SpherePhysicsDiagnostics>();
@@ -1256,11 +1260,7 @@ struct ChangedPositions(usize);
 /// directly (undone, as the components are the truth).
 #[test]
 fn asleep_spheres_are_left_alone_and_every_change_still_reaches_them() {
-    let plugin = SpherePhysicsPlugin::default()
-        .gravity(DVec3::NEG_Y * 9.81)
-        .restitution(0.5)
-        .sleep(sphere_physics::Sleep::default());
-    let mut app = app(plugin);
+    let mut app = app(sleeping_under_gravity());
     app.init_resource::<ChangedPositions>().add_systems(
         FixedUpdate,
         (|moved: Query<(), Changed<SpherePosition>>, mut count: ResMut<ChangedPositions>| {

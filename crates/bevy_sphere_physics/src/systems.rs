@@ -493,6 +493,7 @@ pub(crate) fn step(
 pub(crate) fn writeback(
     physics: Res<SpherePhysicsWorld>,
     stepped: Res<Stepped>,
+    mut still: Local<bool>,
     mut spheres: Query<(
         &SphereHandle,
         &mut SpherePosition,
@@ -504,7 +505,15 @@ pub(crate) fn writeback(
     // that `Prepare` need not look at the spheres that did not move, nor a game system that
     // asks for changed positions; with none asleep, every one is written (comparing them
     // took a scene of 3000 moving spheres 40% longer here).
-    let compare = physics.world.stats().asleep > 0;
+    // A step that moved nothing, after a `Writeback` that changed nothing (so every sphere's
+    // last two positions are the same): every component already holds its body's values.
+    // (A game's change since would have changed the world, and the step would not be quiet.)
+    let stats = physics.world.stats();
+    if stepped.0 && stats.quiet && *still {
+        return;
+    }
+    let compare = stats.asleep > 0;
+    let mut wrote = !compare;
     for (handle, mut position, mut previous, velocity) in &mut spheres {
         let Some(body) = physics.world.body(handle.0) else {
             continue;
@@ -521,18 +530,22 @@ pub(crate) fn writeback(
         }
         if !same_bits(previous.0, position.0) {
             previous.0 = position.0;
+            wrote = true;
         }
         if stepped.0 {
             if !same_bits(position.0, body.position()) {
                 position.0 = body.position();
+                wrote = true;
             }
             if let Some(mut velocity) = velocity
                 && !same_bits(velocity.0, body.velocity())
             {
                 velocity.0 = body.velocity();
+                wrote = true;
             }
         }
     }
+    *still = !wrote;
 }
 
 /// Whether `a` and `b` are the same to the bit (a zero's sign included).

@@ -58,6 +58,11 @@ pub struct StepStats {
     pub separated: u32,
     /// Bodies asleep at the end of the step (see [`Settings::sleep`](crate::Settings::sleep)).
     pub asleep: u32,
+    /// The step moved nothing: every dynamic body was asleep, no fixed one moving, and
+    /// nothing had been changed through the world since the last step (see
+    /// [`Settings::sleep`](crate::Settings::sleep)). Every body's position and velocity are
+    /// as they were before it, to the bit.
+    pub quiet: bool,
 }
 
 impl StepStats {

@@ -105,8 +105,8 @@ pub struct Settings {
     /// [`World::set_velocity`], [`World::set_position`], [`World::set_force`],
     /// [`World::remove_body`], or [`World::wake`]), when a fixed sphere touching it is added,
     /// changed or removed, and when gravity changes or sleeping is turned off. A world whose
-    /// dynamic bodies are all asleep, with no fixed body moving, takes its steps without work.
-    /// [`Body::is_asleep`] and [`StepStats::asleep`] tell.
+    /// dynamic bodies are all asleep, with no fixed body moving, takes its steps without work
+    /// ([`StepStats::quiet`]). [`Body::is_asleep`] and [`StepStats::asleep`] tell.
     pub sleep: Option<Sleep>,
 }
 
@@ -608,6 +608,7 @@ impl World {
             potential_energy: last.potential_energy,
             max_overlap: last.max_overlap,
             asleep: last.asleep,
+            quiet: true,
             ..Default::default()
         };
     }

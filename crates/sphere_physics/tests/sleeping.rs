@@ -85,8 +85,11 @@ fn a_ball_at_rest_on_the_floor_falls_asleep_and_its_steps_are_quiet() {
     assert_eq!(world.stats().asleep, 1);
     assert_eq!(world.stats().kinetic_energy, 0.0);
     assert_eq!(world.stats().momentum, DVec3::ZERO);
+    // The step it fell asleep in moved it.
+    assert!(!world.stats().quiet);
     for _ in 0..600 {
         let stats = *world.step(DT).unwrap();
+        assert!(stats.quiet);
         assert_eq!(stats.collisions, 0);
         assert_eq!(stats.asleep, 1);
         assert_eq!(stats.kinetic_energy, 0.0);
@@ -94,6 +97,9 @@ fn a_ball_at_rest_on_the_floor_falls_asleep_and_its_steps_are_quiet() {
     }
     // Nothing moved, to the bit.
     assert_eq!(world.body(ball).unwrap(), &body);
+    // A change through the world: the next step is not quiet.
+    world.wake(ball).unwrap();
+    assert!(!world.step(DT).unwrap().quiet);
 }
 
 #[test]

@@ -134,6 +134,15 @@ fn tether(rng: &mut Rng, at: DVec3) -> Tethered {
     }
 }
 
+/// Adds the marker `C` if the entity lacks it, removes it if not.
+fn toggle<C: Component + Default>(entity: &mut EntityWorldMut) {
+    if entity.contains::<C>() {
+        entity.remove::<C>();
+    } else {
+        entity.insert(C::default());
+    }
+}
+
 /// One random thing a game does between frames.
 fn change(app: &mut App, rng: &mut Rng) {
     let all = spheres(app);
@@ -193,12 +202,7 @@ fn change(app: &mut App, rng: &mut Rng) {
                 .insert(AppliedForce(rng.maybe_bad_vector(5.0)));
         }
         (12, Some(e)) => {
-            let mut entity = world.entity_mut(e);
-            if entity.contains::<FixedSphere>() {
-                entity.remove::<FixedSphere>();
-            } else {
-                entity.insert(FixedSphere);
-            }
+            toggle::<FixedSphere>(&mut world.entity_mut(e));
         }
         (13, Some(e)) => {
             let mut entity = world.entity_mut(e);
@@ -219,12 +223,7 @@ fn change(app: &mut App, rng: &mut Rng) {
             };
         }
         (15, Some(e)) => {
-            let mut entity = world.entity_mut(e);
-            if entity.contains::<Disabled>() {
-                entity.remove::<Disabled>();
-            } else {
-                entity.insert(Disabled);
-            }
+            toggle::<Disabled>(&mut world.entity_mut(e));
         }
         (16, _) if rng.chance(0.3) => {
             // Paused now and then, for a few frames: a step or two, then on again.

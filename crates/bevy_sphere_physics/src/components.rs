@@ -15,7 +15,9 @@ use sphere_physics::BodyError;
 /// 1 unless set, or a [`ResetSpherePhysics`](crate::ResetSpherePhysics)'s).
 ///
 /// The sphere starts where its [`SpherePosition`] says if one is spawned with it, else at its
-/// `Transform`'s translation. Changing `radius` later re-validates the body; see the crate docs
+/// `Transform`'s translation, read as its place in the world (the plugin writes it back so):
+/// a sphere must be a root entity, or the child of one at the origin, neither rotated nor
+/// scaled. Changing `radius` later re-validates the body; see the crate docs
 /// for what changes mid-simulation do.
 #[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
 #[reflect(Component)]

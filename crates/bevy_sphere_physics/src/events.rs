@@ -28,6 +28,8 @@ pub struct SphereCollision {
 
 /// A collision seen from one sphere: triggered on each of the two spheres once per collision,
 /// so an observer on either (`commands.spawn(..).observe(|hit: On<SphereHit>| ..)`) sees it.
+/// A global observer (`app.add_observer(|hit: On<SphereHit>| ..)`) sees both triggers, so
+/// each collision twice: count collisions with [`SphereCollision`].
 #[derive(EntityEvent, Clone, Copy, Debug, PartialEq)]
 pub struct SphereHit {
     /// The sphere the observer watches.

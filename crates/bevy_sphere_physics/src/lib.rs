@@ -22,7 +22,14 @@
 //! - **Change a component** ([`SphereVelocity`], [`SphereBody::radius`], [`Density`],
 //!   [`Restitution`], [`AppliedForce`], [`SpherePosition`] to teleport, [`FixedSphere`],
 //!   [`Tethered`]): applied at the next fixed step's `Prepare`. Writing `Transform` does
-//!   nothing: it is the plugin's output.
+//!   nothing: it is the plugin's output. A velocity or position set by a system that ran
+//!   after `Prepare` in the same fixed step (a system in `FixedUpdate` with no order against
+//!   the plugin's sets may) is kept, not overwritten with the step's result, and applied at
+//!   the next step; order such a system `.before(SpherePhysicsSystems::Prepare)` to have it
+//!   applied in the step it runs in.
+//! - **Parent a sphere**: don't. The plugin reads and writes a sphere's `Transform` as its
+//!   place in the world, so a sphere must be a root entity, or the child of one at the origin,
+//!   neither rotated nor scaled.
 //! - **Invalid values** (radius ≤ 0, NaN, restitution outside `[0, 1]`, a sphere beyond its
 //!   string): the sphere is left out of the simulation, a [`SphereRejected`] message and a
 //!   warning name the entity, the field and the value, and [`RejectedSphere`] is put on it;
@@ -42,7 +49,9 @@
 //!   dozen steps.
 //!
 //! Collisions come as [`SphereCollision`] messages and as [`SphereHit`] entity events that
-//! observers on either sphere receive, once per collision. [`SpherePhysicsDiagnostics`] holds
+//! observers on either sphere receive, once per collision (a global observer, watching no
+//! entity, sees each collision twice, once for each sphere: count collisions with
+//! [`SphereCollision`]). [`SpherePhysicsDiagnostics`] holds
 //! the core's per-step statistics; [`SpherePhysicsClock`] pauses and single-steps.
 #![warn(missing_docs)]
 

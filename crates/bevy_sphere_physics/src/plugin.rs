@@ -10,7 +10,9 @@ use crate::events::{SphereCollision, SphereRejected};
 use crate::resources::{
     SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld, SphereShownTime,
 };
-use crate::systems::{self, PluginOptions, RemovedSpheres, RescanSpheres, RunawaySpheres, Stepped};
+use crate::systems::{
+    self, PluginOptions, PreparedAt, RemovedSpheres, RescanSpheres, RunawaySpheres, Stepped,
+};
 
 /// The plugin's stages in [`FixedUpdate`], chained in this order. Put a game's systems
 /// `.before(..)` or `.after(..)` any of them, e.g. apply thrust before `Prepare` or read
@@ -139,6 +141,7 @@ impl Plugin for SpherePhysicsPlugin {
             .init_resource::<RemovedSpheres>()
             .init_resource::<RunawaySpheres>()
             .init_resource::<RescanSpheres>()
+            .init_resource::<PreparedAt>()
             .add_observer(systems::record_removal)
             .add_observer(systems::record_part_removal)
             .add_message::<SphereCollision>()

@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use bevy::ecs::change_detection::Tick;
 use bevy::ecs::entity_disabling::Disabled;
 use bevy::ecs::system::SystemChangeTick;
 use bevy::math::DVec3;
@@ -32,23 +33,33 @@ pub(crate) fn record_removal(removed: On<Remove, SphereBody>, mut queue: ResMut<
     queue.0.push(removed.entity);
 }
 
-/// Set when a component a sphere's description reads (or `Disabled`) is removed from any
-/// entity: the next `Prepare` then looks at every sphere, not only those whose components
-/// changed (a removed component means its default, and an enabled sphere joins again).
-/// Recorded by an observer, as removals are, so none is missed on frames without a fixed step.
+/// What the next `Prepare` must look at besides the spheres whose components changed:
+/// every sphere (at the start), and the entities a component a sphere's description reads (or
+/// `Disabled`) was removed from (a removed component means its default, and an enabled sphere
+/// joins again). Recorded by an observer, as removals are, so none is missed on frames without
+/// a fixed step; a despawned entity is recorded too, and passed over.
 #[derive(Resource, Debug)]
-pub(crate) struct RescanSpheres(pub bool);
+pub(crate) struct RescanSpheres {
+    /// Every sphere.
+    pub all: bool,
+    /// The entities a component was removed from.
+    pub entities: Vec<Entity>,
+}
 
 impl Default for RescanSpheres {
     fn default() -> Self {
-        Self(true)
+        Self {
+            all: true,
+            entities: Vec::new(),
+        }
     }
 }
 
-/// Asks the next `Prepare` to look at every sphere (see [`RescanSpheres`]).
+/// Asks the next `Prepare` to look at the entity a component was removed from (see
+/// [`RescanSpheres`]).
 #[allow(clippy::type_complexity)]
 pub(crate) fn record_part_removal(
-    _: On<
+    removed: On<
         Remove,
         (
             SpherePosition,
@@ -63,15 +74,18 @@ pub(crate) fn record_part_removal(
     >,
     mut rescan: ResMut<RescanSpheres>,
 ) {
-    rescan.0 = true;
+    rescan.entities.push(removed.entity);
 }
 
 /// The spheres `Prepare` must look at when nothing else has changed: those whose components
 /// were added or changed since its last run (by the game, or by `Writeback` for the spheres
-/// that moved). An asleep sphere, which `Writeback` leaves alone, is not among them.
+/// that moved), the `Transform` among them for a sphere it places (one without a
+/// `SpherePosition`: not yet joined, or rejected when it joined). An asleep sphere, which
+/// `Writeback` leaves alone, is not among them.
 type ChangedSphere = (
     With<SphereBody>,
     Or<(
+        (Changed<Transform>, Without<SpherePosition>),
         Changed<SpherePosition>,
         Changed<SphereVelocity>,
         Changed<SphereBody>,
@@ -88,6 +102,12 @@ type ChangedSphere = (
 /// reads them needs no order against `Step`.
 #[derive(Resource, Debug, Default)]
 pub(crate) struct RunawaySpheres(pub Vec<SphereRejected>);
+
+/// The tick at which `Prepare` last ran: a sphere's velocity or position changed after it was
+/// changed by a game system that `Prepare` did not see, and `Writeback` leaves it for the next
+/// `Prepare` to apply.
+#[derive(Resource, Clone, Copy, Debug, Default)]
+pub(crate) struct PreparedAt(pub Tick);
 
 /// Whether the last fixed step stepped the physics (false while paused).
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -260,15 +280,17 @@ pub(crate) fn prepare(
     orders: Query<&SphereOrder>,
     disabled: Query<Entity, (With<SphereBody>, With<Disabled>)>,
     mut runaways: ResMut<RunawaySpheres>,
+    mut prepared: ResMut<PreparedAt>,
+    ticks: SystemChangeTick,
 ) {
+    prepared.0 = ticks.this_run();
     // Every sphere is looked at while none is asleep (all that move are written back at
     // every step, and a plain scan is then the cheaper), when the core world was changed from
     // outside the plugin (a game's change to a body, undone here; a body removed, registered
-    // again; a reset), when the options changed, or when a component was removed; else only
-    // the spheres whose components changed: the others still match their bodies (the
-    // plugin's own changes to the world, here and in `Step`, do not count as changes to the
-    // resource).
-    let every = std::mem::take(&mut rescan.0)
+    // again; a reset), or when the options changed; else only the spheres whose components
+    // changed or lost one: the others still match their bodies (the plugin's own changes to
+    // the world, here and in `Step`, do not count as changes to the resource).
+    let every = std::mem::take(&mut rescan.all)
         | physics.is_changed()
         | options.is_changed()
         | (physics.world.stats().asleep == 0);
@@ -368,6 +390,7 @@ pub(crate) fn prepare(
         }};
     }
     if every {
+        rescan.entities.clear();
         for item in &spheres {
             look_at!(item);
         }
@@ -375,8 +398,18 @@ pub(crate) fn prepare(
         for item in &changed {
             look_at!(item);
         }
+        // Those that lost a component (a sphere looked at twice matches its body the second
+        // time, and a new one is listed once below); despawned ones are gone.
+        for at in 0..rescan.entities.len() {
+            let Ok(item) = spheres.get(rescan.entities[at]) else {
+                continue;
+            };
+            look_at!(item);
+        }
+        rescan.entities.clear();
     }
     new.sort_unstable_by_key(|&e| (orders.get(e).map_or(u64::MAX, |o| o.0), e));
+    new.dedup();
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
         let desc = describe(&item, &options, None);
@@ -493,9 +526,11 @@ pub(crate) fn step(
 pub(crate) fn writeback(
     physics: Res<SpherePhysicsWorld>,
     stepped: Res<Stepped>,
+    prepared: Res<PreparedAt>,
+    ticks: SystemChangeTick,
     mut still: Local<bool>,
     mut spheres: Query<(
-        &SphereHandle,
+        Ref<SphereHandle>,
         &mut SpherePosition,
         &mut PreviousSpherePosition,
         Option<&mut SphereVelocity>,
@@ -503,7 +538,8 @@ pub(crate) fn writeback(
 ) {
     // A step that moved nothing, after a `Writeback` that changed nothing (so every sphere's
     // last two positions are the same): every component already holds its body's values.
-    // (A game's change since would have changed the world, and the step would not be quiet.)
+    // (A game's change before `Prepare` would have changed the world, and the step would not
+    // be quiet; one after it is left as it is, as below.)
     let stats = physics.world.stats();
     if stepped.0 && stats.quiet && *still {
         return;
@@ -514,35 +550,48 @@ pub(crate) fn writeback(
     // took a scene of 3000 moving spheres 40% longer here).
     let compare = stats.asleep > 0;
     let mut wrote = !compare;
+    // Changed after `Prepare` ran: by a game system that it did not see (one with no order
+    // against the plugin's sets may run between them). Such a velocity or position is left as
+    // the game set it, for the next `Prepare` to apply, not overwritten with the step's
+    // result; a position `Prepare` itself put there is not the game's (a sphere that joined,
+    // its handle put on with it, or one whose position was removed, put back).
+    let late = |tick: Tick| tick.is_newer_than(prepared.0, ticks.this_run());
     for (handle, mut position, mut previous, velocity) in &mut spheres {
         let Some(body) = physics.world.body(handle.0) else {
             continue;
         };
+        if let Some(mut velocity) = velocity
+            && stepped.0
+        {
+            if late(velocity.last_changed()) {
+                wrote = true;
+            } else if !compare || !same_bits(velocity.0, body.velocity()) {
+                velocity.0 = body.velocity();
+                wrote = true;
+            }
+        }
+        if late(position.last_changed()) && !late(position.added()) && !late(handle.last_changed())
+        {
+            wrote = true;
+            continue;
+        }
         if !compare {
             previous.0 = position.0;
             if stepped.0 {
                 position.0 = body.position();
-                if let Some(mut velocity) = velocity {
-                    velocity.0 = body.velocity();
-                }
             }
             continue;
         }
-        if !same_bits(previous.0, position.0) {
+        // A position is written with its previous one, even one the same as it (a sphere
+        // that starts moving): the interpolation takes a position written after its previous
+        // one for a game's teleport, shown where it was put.
+        if stepped.0 && !same_bits(position.0, body.position()) {
+            previous.0 = position.0;
+            position.0 = body.position();
+            wrote = true;
+        } else if !same_bits(previous.0, position.0) {
             previous.0 = position.0;
             wrote = true;
-        }
-        if stepped.0 {
-            if !same_bits(position.0, body.position()) {
-                position.0 = body.position();
-                wrote = true;
-            }
-            if let Some(mut velocity) = velocity
-                && !same_bits(velocity.0, body.velocity())
-            {
-                velocity.0 = body.velocity();
-                wrote = true;
-            }
         }
     }
     *still = !wrote;

@@ -1327,3 +1327,164 @@ fn asleep_spheres_are_left_alone_and_every_change_still_reaches_them() {
     assert_eq!(asleep(&app), 1);
     assert!(position(&app, b).x > at_b.x);
 }
+
+/// Regression (found by review): while any sphere slept, `Writeback` wrote a sphere's
+/// `SpherePosition` without its `PreviousSpherePosition` when the two had been the same (a
+/// sphere starting to move after standing still), and the interpolation took it for a
+/// teleport: the sphere was drawn a whole step ahead, then stood there until the next step.
+#[test]
+fn regression_a_sphere_starting_to_move_beside_a_sleeper_is_interpolated() {
+    let mut app = app(sleeping_under_gravity());
+    let (_, a) = ball_on_a_floor(&mut app);
+    let b = ball(&mut app, DVec3::new(3.0, 0.5, 0.0), DVec3::ZERO);
+    run_steps(&mut app, 90);
+    let asleep = |app: &App| {
+        app.world()
+            .resource::<SpherePhysicsDiagnostics>()
+            .last
+            .asleep
+    };
+    assert_eq!(asleep(&app), 2);
+    let at = position(&app, b);
+    // `b` is pushed along the floor; `a` sleeps on.
+    app.world_mut().get_mut::<SphereVelocity>(b).unwrap().0 = DVec3::X;
+    // A frame of 1.5 fixed steps: one step, and the fixed clock half a step into the next.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP * 3 / 2));
+    let steps = app.world().resource::<SpherePhysicsDiagnostics>().steps;
+    app.update();
+    assert_eq!(
+        app.world().resource::<SpherePhysicsDiagnostics>().steps,
+        steps + 1
+    );
+    assert_eq!(asleep(&app), 1);
+    assert!(!position(&app, a).is_nan());
+    let fraction = app
+        .world()
+        .resource::<Time<Fixed>>()
+        .overstep_fraction_f64();
+    assert!((fraction - 0.5).abs() < 1e-9, "overstep {fraction}");
+    let now = position(&app, b);
+    assert!(now.x > at.x, "it moved: {at} to {now}");
+    let shown = app.world().get::<Transform>(b).unwrap().translation;
+    let expected = at.lerp(now, fraction).as_vec3();
+    assert!(
+        (shown - expected).length() < 1e-6,
+        "shown at {shown}, half a step back from {now} is {expected}"
+    );
+}
+
+/// Writes a game system made to `SphereVelocity` and `SpherePosition` once, after `Prepare`
+/// and before `Writeback` (where a system in `FixedUpdate` with no order against the plugin's
+/// sets may run).
+#[derive(Resource)]
+struct LateWrites {
+    pushed: Entity,
+    moved: Entity,
+    target: DVec3,
+    done: bool,
+}
+
+/// Regression (found by review): a game system that set a sphere's velocity or position
+/// after `Prepare` had read it (one with no order against the plugin's sets may run there)
+/// had it overwritten by `Writeback` with the step's result, and the change was lost. It is
+/// now kept, and applied at the next step.
+#[test]
+fn regression_a_change_made_after_prepare_is_kept_for_the_next_step() {
+    for sleeping in [false, true] {
+        let plugin = if sleeping {
+            sleeping_under_gravity()
+        } else {
+            SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * 9.81)
+        };
+        let mut app = app(plugin);
+        let (_, pushed) = ball_on_a_floor(&mut app);
+        let moved = ball(&mut app, DVec3::new(3.0, 0.5, 0.0), DVec3::ZERO);
+        run_steps(&mut app, 90);
+        let asleep = app
+            .world()
+            .resource::<SpherePhysicsDiagnostics>()
+            .last
+            .asleep;
+        assert_eq!(asleep, if sleeping { 2 } else { 0 });
+        // `moved` goes to the other side of the floor's top, where it rests as it did.
+        let (at, was) = (position(&app, pushed), position(&app, moved));
+        let target = DVec3::new(-was.x, was.y, was.z);
+        app.insert_resource(LateWrites {
+            pushed,
+            moved,
+            target,
+            done: false,
+        })
+        .add_systems(
+            FixedUpdate,
+            (|mut late: ResMut<LateWrites>,
+              mut velocities: Query<&mut SphereVelocity>,
+              mut positions: Query<&mut SpherePosition>| {
+                if !late.done {
+                    late.done = true;
+                    velocities.get_mut(late.pushed).unwrap().0 = DVec3::X;
+                    positions.get_mut(late.moved).unwrap().0 = late.target;
+                }
+            })
+            .after(SpherePhysicsSystems::Prepare)
+            .before(SpherePhysicsSystems::Writeback),
+        );
+        run_steps(&mut app, 1);
+        assert_eq!(velocity(&app, pushed), DVec3::X, "sleeping {sleeping}");
+        assert_eq!(position(&app, moved), target, "sleeping {sleeping}");
+        run_steps(&mut app, 2);
+        // Applied at the next step's `Prepare`: it slides for two steps (a step would be
+        // 0.0156 m), from where it was.
+        let dt = STEP.as_secs_f64();
+        let slid = position(&app, pushed) - at;
+        assert!(
+            (slid.x - 2.0 * dt).abs() < 1e-6,
+            "sleeping {sleeping}: {slid}"
+        );
+        // It goes on from there (sliding off the floor's top at a few mm/s, as it was: a
+        // teleport lost would leave it 6 m away).
+        let moved_by = position(&app, moved) - target;
+        assert!(moved_by.length() < 1e-3, "sleeping {sleeping}: {moved_by}");
+    }
+}
+
+/// Regression (found by review): while any sphere slept, a sphere rejected when it joined
+/// (placed by its `Transform` beyond its string) was not retried when a game moved its
+/// `Transform` to a valid place: `Prepare` looked only at spheres whose physics components
+/// changed.
+#[test]
+fn regression_a_rejected_sphere_moved_by_its_transform_joins_while_others_sleep() {
+    let mut app = app(sleeping_under_gravity());
+    ball_on_a_floor(&mut app);
+    run_steps(&mut app, 90);
+    let asleep = |app: &App| {
+        app.world()
+            .resource::<SpherePhysicsDiagnostics>()
+            .last
+            .asleep
+    };
+    assert_eq!(asleep(&app), 1);
+    let anchor = DVec3::new(5.0, 3.0, 0.0);
+    let hanging = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(5.0, 0.5, 0.0),
+            Tethered {
+                anchor,
+                length: 1.0,
+            },
+        ))
+        .id();
+    run_steps(&mut app, 2);
+    assert!(app.world().get::<RejectedSphere>(hanging).is_some());
+    assert!(app.world().get::<SphereHandle>(hanging).is_none());
+    app.world_mut()
+        .get_mut::<Transform>(hanging)
+        .unwrap()
+        .translation = Vec3::new(5.0, 2.5, 0.0);
+    run_steps(&mut app, 2);
+    assert!(app.world().get::<SphereHandle>(hanging).is_some());
+    assert!(app.world().get::<RejectedSphere>(hanging).is_none());
+    assert_eq!(asleep(&app), 1);
+}

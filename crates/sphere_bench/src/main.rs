@@ -4,6 +4,7 @@
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
 //!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases]
 //!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep]
+//!         [--bouncer]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step; with
 //! `--settle N`, N times: the pile's bed at rest, say, rather than its landing), then times
@@ -29,6 +30,8 @@
 //! rapier's bodies fall asleep at rest (its default); ours do with `--sleep` (sleeping is off
 //! by default in our engine; `--sleep` turns on `Settings::sleep` with `Sleep::default()`),
 //! and a last table then gives how many of each engine's spheres are asleep after the run.
+//! `--bouncer` adds to each scene a ball that never sleeps (see `scenes::add_bouncer`): what a
+//! bed asleep costs while something else in the world moves.
 
 use std::io::Write;
 
@@ -58,6 +61,8 @@ struct Options {
     rapier_flat_walls: bool,
     /// Our engine with sleeping on (`Sleep::default()`), as rapier's is by default.
     sleep: bool,
+    /// A ball bouncing for ever above each scene (`scenes::add_bouncer`).
+    bouncer: bool,
 }
 
 /// `value` as a positive integer, or an error naming `flag`.
@@ -85,6 +90,7 @@ fn parse() -> Result<Options, String> {
         rapier_length_unit: 2.0 * scenes::RADIUS,
         rapier_flat_walls: false,
         sleep: false,
+        bouncer: false,
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut it = args.iter();
@@ -122,9 +128,10 @@ fn parse() -> Result<Options, String> {
             }
             "--rapier-flat-walls" => options.rapier_flat_walls = true,
             "--sleep" => options.sleep = true,
+            "--bouncer" => options.bouncer = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep] [--bouncer]"
                 );
                 std::process::exit(0);
             }
@@ -210,6 +217,9 @@ fn main() {
             };
             // Read by our engine only: rapier's sleeping is always on.
             scene.sleep = options.sleep.then(Sleep::default);
+            if options.bouncer {
+                scenes::add_bouncer(&mut scene);
+            }
             let mut ours = None;
             #[cfg(feature = "rapier")]
             let (mut ccd, mut plain) = (None, None);

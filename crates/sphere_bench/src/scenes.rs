@@ -1,7 +1,7 @@
 //! The benchmark scenes, sized by sphere count: a shower onto a fixed dome, a gas in a box, a
 //! pile in an open box, showers side by side (a sparse scene) and two gases far apart.
 
-use sphere_physics::SceneDesc;
+use sphere_physics::{SceneDesc, SphereSpec};
 
 /// Radius of the small spheres in both scenes.
 pub const RADIUS: f64 = 0.05;
@@ -178,4 +178,27 @@ pub fn pile(n: u32, seed: u64) -> SceneDesc {
         hi = half,
     ))
     .expect("the pile scene is valid")
+}
+
+/// Adds to `scene` a ball of radius 0.05 dropped from 1 m onto a fixed sphere of radius 0.1
+/// whose top is 6.1 m above the origin, both of restitution 1, the ball exactly above the
+/// sphere's centre: it bounces straight up and down for ever, far above the scenes' beds
+/// (the pile's is under a metre deep). A world with one sphere that never sleeps, as a game's
+/// always has something moving.
+pub fn add_bouncer(scene: &mut SceneDesc) {
+    let sphere = |name: &str, y: f64, radius: f64, fixed: bool| SphereSpec {
+        name: Some(name.to_owned()),
+        position: [0.0, y, 0.0],
+        velocity: [0.0; 3],
+        radius,
+        density: 1.0,
+        restitution: Some(1.0),
+        force: [0.0; 3],
+        fixed,
+        tether: None,
+    };
+    scene
+        .spheres
+        .push(sphere("bouncer's stand", 6.0, 0.1, true));
+    scene.spheres.push(sphere("bouncer", 7.15, 0.05, false));
 }

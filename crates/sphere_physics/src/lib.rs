@@ -47,6 +47,7 @@
 pub mod body;
 mod broad_phase;
 pub mod contact;
+mod dormant;
 pub mod generate;
 mod instant;
 pub mod integrator;

@@ -57,6 +57,10 @@ pub(crate) struct Sleeper {
     gravity: Option<DVec3>,
     /// The earliest time at which groups are formed again.
     next_check: f64,
+    /// Changes whenever a body falls asleep or wakes: what `Dormant` keeps of the bodies
+    /// asleep holds while it does not. (A body added, changed or removed that touches a body
+    /// asleep wakes it.)
+    generation: u64,
     /// Every dynamic body asleep and no fixed one moving since the last step, and nothing
     /// changed since through the world: the next step has nothing to do.
     quiet: bool,
@@ -95,12 +99,18 @@ impl Sleeper {
     /// Wakes every body, and starts every body's calm again (gravity changed, or sleeping was
     /// turned off).
     fn wake_all(&mut self, bodies: &mut [Body]) {
+        self.generation += 1;
         for body in bodies.iter_mut() {
             body.asleep = false;
             body.calm = 0.0;
         }
         self.asleep = 0;
         self.quiet = false;
+    }
+
+    /// See `generation`.
+    pub fn generation(&self) -> u64 {
+        self.generation
     }
 
     /// Something was changed through the world (a body added, removed or changed): the next
@@ -170,6 +180,7 @@ impl Sleeper {
             return;
         }
         self.quiet = false;
+        self.generation += 1;
         self.wake.sort_unstable();
         self.wake.dedup();
         for body in bodies.iter_mut() {
@@ -284,6 +295,7 @@ impl Sleeper {
                 self.new_island[root] = self.last_island;
             }
             self.asleep += usize::from(!body.asleep);
+            self.generation += 1;
             body.asleep = true;
             body.island = self.new_island[root];
             body.desc.velocity = DVec3::ZERO;

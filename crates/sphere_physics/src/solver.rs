@@ -666,6 +666,10 @@ pub(crate) struct StepContext<'a> {
     /// Whether any body may be asleep (see `Settings::sleep`): when not, the step reads no
     /// body's sleeping state.
     pub sleeping: bool,
+    /// How many dynamic bodies (all asleep) the step leaves out, and the largest component
+    /// of any acceleration among them (see `dormant.rs`): the step's scales and its collision
+    /// budget count them as a step of every body would.
+    pub left_out: (u32, f64),
 }
 
 /// Times a step's phases one after the other, when asked to (a clock read per phase).
@@ -760,8 +764,9 @@ impl Solver {
         self.boxes.clear();
         let mut dynamic = 0u32;
         // Whether anything accelerates: the largest component of any acceleration (no square
-        // root per body; and a tiny acceleration whose length would underflow still counts).
-        let mut largest_acceleration = 0.0f64;
+        // root per body; and a tiny acceleration whose length would underflow still counts),
+        // those of the bodies left out of the step among them.
+        let mut largest_acceleration = ctx.left_out.1;
         self.strings = false;
         self.any_asleep = false;
         self.largest_kick_after = 0.0;
@@ -863,7 +868,7 @@ impl Solver {
             f64::INFINITY
         };
         self.apart = Apart::new(settings.tolerance.epsilon());
-        Ok(dynamic)
+        Ok(dynamic + ctx.left_out.0)
     }
 
     /// Puts the segments (and `boxes`) in `broad`'s spatial order, where neighbours in space

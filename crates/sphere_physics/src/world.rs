@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::body::Field;
 use crate::contact::{ContactKind, Kinematics, classify};
+use crate::dormant::Dormant;
 use crate::sleep::{Sleep, Sleeper};
 use crate::solver::{Solver, StepContext};
 use crate::{
@@ -284,6 +285,10 @@ pub struct World {
     rollback: Vec<(DVec3, DVec3)>,
     /// Who sleeps, and the buffers that decide it.
     sleeper: Sleeper,
+    /// Which islands asleep a step may leave out.
+    dormant: Dormant,
+    /// Which bodies the step takes (a buffer for the deepest overlap of those it leaves out).
+    taken: Vec<bool>,
 }
 
 impl World {
@@ -343,6 +348,8 @@ impl World {
         let index = self.index(id).ok()?;
         self.solver.forget_indices();
         self.woken_by(index);
+        // The bodies after it move down one place.
+        self.dormant.removed(index);
         Some(self.bodies.remove(index))
     }
 
@@ -545,6 +552,20 @@ impl World {
                 .extend(self.bodies.iter().map(|b| (b.position(), b.velocity())));
         }
         for k in 0..substeps {
+            // With sleeping on, a step of one substep may leave out the islands asleep beyond
+            // the reach of everything that moves (see `dormant.rs`).
+            let leaves_out = substeps == 1
+                && self.integrator.is_none()
+                && self.sleeper.asleep() > 0
+                && self.dormant.choose(
+                    &self.bodies,
+                    &self.settings,
+                    sub_dt,
+                    self.sleeper.generation(),
+                );
+            if !self.dormant.same_indices(leaves_out) {
+                self.solver.forget_indices();
+            }
             let ctx = StepContext {
                 settings: &self.settings,
                 integrator: self.integrator.as_deref(),
@@ -552,8 +573,71 @@ impl World {
                 dt: sub_dt,
                 start_time: self.time + f64::from(k) * sub_dt,
                 sleeping: self.sleeper.asleep() > 0,
+                left_out: if leaves_out {
+                    (
+                        self.dormant.left_out_dynamic,
+                        self.dormant.left_out_acceleration,
+                    )
+                } else {
+                    (0, 0.0)
+                },
             };
-            if let Err(index) = self.solver.step(&mut self.bodies, &ctx, &mut stats) {
+            let result = if leaves_out {
+                let dormant = &mut self.dormant;
+                let left_out_overlap = match dormant.left_out_overlap() {
+                    Some(overlap) => overlap,
+                    None => {
+                        // The deepest overlap of a pair with a body left out: such a body
+                        // stays where it is in the step, as does every fixed one.
+                        let bodies = &self.bodies;
+                        let mut taken = std::mem::take(&mut self.taken);
+                        taken.clear();
+                        taken.resize(bodies.len(), false);
+                        for &i in &dormant.in_step {
+                            taken[i as usize] = true;
+                        }
+                        let mut deepest = 0.0f64;
+                        self.solver.pairs_near(
+                            bodies,
+                            |_| 0.0,
+                            |i, j| {
+                                let (a, b) = (&bodies[i], &bodies[j]);
+                                let left_out = !taken[i] || !taken[j];
+                                if left_out && !(a.is_fixed() && b.is_fixed()) {
+                                    let overlap = a.radius() + b.radius()
+                                        - (b.position() - a.position()).length();
+                                    deepest = deepest.max(overlap);
+                                }
+                            },
+                        );
+                        self.taken = taken;
+                        dormant.set_left_out_overlap(deepest);
+                        deepest
+                    }
+                };
+                // The step's bodies moved out of the world for the step, and back.
+                let m = dormant.in_step.len();
+                while dormant.bodies.len() < m {
+                    dormant
+                        .bodies
+                        .push(Body::new(BodyId(0), SphereDesc::new(1.0)));
+                }
+                for (k, &i) in dormant.in_step.iter().enumerate() {
+                    std::mem::swap(&mut self.bodies[i as usize], &mut dormant.bodies[k]);
+                }
+                let result = self.solver.step(&mut dormant.bodies[..m], &ctx, &mut stats);
+                for (k, &i) in dormant.in_step.iter().enumerate() {
+                    std::mem::swap(&mut self.bodies[i as usize], &mut dormant.bodies[k]);
+                }
+                if result.is_ok() {
+                    stats.max_overlap = stats.max_overlap.max(left_out_overlap);
+                    stats.potential_energy = potential_energy(&self.bodies, &self.settings);
+                }
+                result.map_err(|index| dormant.in_step[index] as usize)
+            } else {
+                self.solver.step(&mut self.bodies, &ctx, &mut stats)
+            };
+            if let Err(index) = result {
                 // The refused substep wrote nothing back; undo the substeps before it, and
                 // drop the step's records.
                 for (body, &(position, velocity)) in self.bodies.iter_mut().zip(&self.rollback) {
@@ -620,11 +704,7 @@ impl World {
 
     /// Potential energy of the dynamic bodies in gravity and their constant forces.
     pub fn potential_energy(&self) -> f64 {
-        self.bodies
-            .iter()
-            .filter(|b| !b.is_fixed())
-            .map(|b| -(b.mass() * self.settings.gravity + b.force()).dot(b.position()))
-            .sum()
+        potential_energy(&self.bodies, &self.settings)
     }
 
     /// Total momentum of the dynamic bodies.
@@ -664,4 +744,13 @@ fn label(name: Option<&str>, id: BodyId) -> String {
         Some(name) => format!("'{name}' ({id})"),
         None => id.to_string(),
     }
+}
+
+/// Potential energy of the dynamic `bodies` in the settings' gravity and their constant forces.
+fn potential_energy(bodies: &[Body], settings: &Settings) -> f64 {
+    bodies
+        .iter()
+        .filter(|b| !b.is_fixed())
+        .map(|b| -(b.mass() * settings.gravity + b.force()).dot(b.position()))
+        .sum()
 }

@@ -1,0 +1,263 @@
+//! Which bodies a step may leave out: with sleeping on, the islands asleep beyond the reach of
+//! everything that moves. A step then costs what its moving bodies and the islands near them
+//! cost, not what the whole world does: a bed of thousands asleep while one ball bounces
+//! elsewhere costs next to nothing, as it does when every sphere sleeps.
+//!
+//! A step's bodies are every fixed body, every dynamic one awake, and every island asleep
+//! that any of those could reach within the step, and what those islands' bodies could reach
+//! in turn (an island struck moves as one: the impulse runs through its contacts). How far a
+//! body can go is bounded by energy: no impact adds kinetic energy (with restitution at most 1
+//! and no body moving while fixed), so no body of the step goes faster than its own speed plus
+//! what its acceleration adds in the step, or than all the kinetic energy of the step's bodies
+//! given to the lightest of them. The bound holds only where every impact is of free or still
+//! bodies: a world with a kinematic sphere (fixed, moving), a sphere on a string or a custom
+//! integrator, or stepped in substeps, takes every body.
+//!
+//! The islands left out do not move and are not moved in the step; their part of the step's
+//! statistics is worked out here: no kinetic energy or momentum (they are at rest), and the
+//! deepest overlap among them and the still fixed bodies (unchanged while they sleep), which
+//! the step's own deepest overlap is taken together with. The step's scales and collision
+//! budget count them as a step of every body would (see `StepContext`).
+
+use glam::DVec3;
+
+use crate::{Body, Settings};
+
+/// The fewest bodies asleep for a step to leave any out: fewer cost less to step than to sort
+/// out.
+const FEWEST_ASLEEP: usize = 64;
+
+/// How many times the choice starts again with a lighter body among the step's (the speed
+/// bound grows with it) before it gives up and takes every body.
+const RESTARTS: u32 = 8;
+
+/// The choice of a step's bodies, and what the bodies left out add to its statistics.
+#[derive(Debug, Default)]
+pub(crate) struct Dormant {
+    /// The step's bodies, as world indices in world order (when [`Dormant::choose`] says so).
+    pub in_step: Vec<u32>,
+    /// Dynamic bodies left out of the step (all asleep).
+    pub left_out_dynamic: u32,
+    /// The largest component of any acceleration of a body asleep (the step's scales take the
+    /// bodies left out as if they were in).
+    pub left_out_acceleration: f64,
+    /// Swap space: the step's bodies are moved here for the step, and back.
+    pub bodies: Vec<Body>,
+    /// Whether the last step left bodies out, and which it took then: the solver keeps some
+    /// marks by index from one step to the next (see `Solver::forget_indices`).
+    last_left_out: bool,
+    last: Vec<u32>,
+    /// The generation of the bodies asleep (see `Sleeper`) the index below was made for.
+    key: Option<u64>,
+    /// The bodies asleep, by their centres' x: `(x, index)`.
+    by_x: Vec<(f64, u32)>,
+    /// The bodies asleep, by island: `(island, index)`.
+    by_island: Vec<(u64, u32)>,
+    /// The largest radius among the bodies asleep.
+    largest_radius: f64,
+    /// The islands taken into the step, sorted.
+    islands: Vec<u64>,
+    /// The step's dynamic bodies whose reach is still to be looked at.
+    frontier: Vec<u32>,
+    /// The deepest overlap of a pair with a body left out, and the generation and the
+    /// islands taken into the step it was worked out for (the same bodies left out: a body
+    /// added, changed or removed that would change it touches one of them, and wakes it).
+    overlap: f64,
+    overlap_for: Option<(u64, Vec<u64>)>,
+}
+
+impl Dormant {
+    /// Chooses the bodies of a step of `dt` (the bodies as they stand, sleeping on, one
+    /// substep, the built-in integrator), into [`Dormant::in_step`]; `generation` changes
+    /// whenever a body falls asleep or wakes.
+    /// Returns whether the step should leave bodies out (false: take every body).
+    pub fn choose(
+        &mut self,
+        bodies: &[Body],
+        settings: &Settings,
+        dt: f64,
+        generation: u64,
+    ) -> bool {
+        let n = bodies.len();
+        if self.key != Some(generation) {
+            self.key = Some(generation);
+            self.index_asleep(bodies, settings);
+        }
+        if self.by_x.len() < FEWEST_ASLEEP {
+            return false;
+        }
+        // Every fixed body (all still) and every dynamic one awake.
+        self.in_step.clear();
+        self.frontier.clear();
+        let (mut energy, mut fastest, mut lightest, mut accelerated) =
+            (0.0f64, 0.0f64, f64::INFINITY, 0.0f64);
+        for (i, body) in bodies.iter().enumerate() {
+            if body.is_fixed() {
+                if body.velocity() != DVec3::ZERO {
+                    return false;
+                }
+                self.in_step.push(i as u32);
+            } else if body.asleep {
+                if body.velocity() != DVec3::ZERO {
+                    return false;
+                }
+            } else {
+                if body.tether().is_some() {
+                    return false;
+                }
+                let a = body.acceleration(settings.gravity).length();
+                let v = body.velocity().length() + a * dt;
+                energy += 0.5 * body.mass() * v * v;
+                fastest = fastest.max(v);
+                lightest = lightest.min(body.mass());
+                accelerated = accelerated.max(a);
+                self.in_step.push(i as u32);
+                self.frontier.push(i as u32);
+            }
+        }
+        // (With none awake, a step changed through the world: only the fixed bodies step.)
+        if !energy.is_finite() {
+            return false;
+        }
+        let (base, awake) = (self.in_step.len(), self.frontier.len());
+        let epsilon = settings.tolerance.epsilon();
+        let mut restarts = 0;
+        'choose: loop {
+            self.in_step.truncate(base);
+            self.frontier.truncate(awake);
+            self.islands.clear();
+            let speed = fastest.max((2.0 * energy / lightest).sqrt()) + accelerated * dt;
+            // How close a body of the step and one asleep of radii `r` and `s` must come to be
+            // counted as meeting in it: twice the farthest either could go, a quarter of their
+            // radii for the pushes out of overlaps and resting contacts' reach, and the
+            // tolerances.
+            let reach = |r: f64, s: f64| {
+                r + s
+                    + 2.0 * speed * dt
+                    + 2.0 * accelerated * dt * dt
+                    + 0.25 * (r + s)
+                    + 8.0 * epsilon * (1.0 + r + s)
+            };
+            let mut next = 0;
+            while next < self.frontier.len() {
+                let k = self.frontier[next] as usize;
+                next += 1;
+                let (p, r) = (bodies[k].position(), bodies[k].radius());
+                let wide = reach(r, self.largest_radius);
+                let lo = self.by_x.partition_point(|e| e.0 < p.x - wide);
+                let hi = self.by_x.partition_point(|e| e.0 <= p.x + wide);
+                for e in lo..hi {
+                    let b = &bodies[self.by_x[e].1 as usize];
+                    let Err(at) = self.islands.binary_search(&b.island) else {
+                        continue;
+                    };
+                    let near = reach(r, b.radius());
+                    if (b.position() - p).length_squared() > near * near {
+                        continue;
+                    }
+                    // Its island comes into the step.
+                    let island = b.island;
+                    self.islands.insert(at, island);
+                    let from = self.by_island.partition_point(|e| e.0 < island);
+                    for &(of, m) in &self.by_island[from..] {
+                        if of != island {
+                            break;
+                        }
+                        self.in_step.push(m);
+                        self.frontier.push(m);
+                        let mass = bodies[m as usize].mass();
+                        if mass < lightest {
+                            // A lighter body: the bound on the speed grows.
+                            lightest = mass;
+                            restarts += 1;
+                            if restarts > RESTARTS {
+                                return false;
+                            }
+                            continue 'choose;
+                        }
+                    }
+                }
+            }
+            break;
+        }
+        if 2 * self.in_step.len() > n {
+            return false;
+        }
+        self.in_step.sort_unstable();
+        self.left_out_dynamic = (self.by_x.len() - (self.in_step.len() - base)) as u32;
+        true
+    }
+
+    /// The body at world index `index` was removed: those after it move down one place.
+    pub fn removed(&mut self, index: usize) {
+        for (_, i) in self.by_x.iter_mut() {
+            if *i as usize > index {
+                *i -= 1;
+            }
+        }
+        for (_, i) in self.by_island.iter_mut() {
+            if *i as usize > index {
+                *i -= 1;
+            }
+        }
+    }
+
+    /// Indexes the bodies asleep (by x and by island).
+    fn index_asleep(&mut self, bodies: &[Body], settings: &Settings) {
+        self.by_x.clear();
+        self.by_island.clear();
+        self.largest_radius = 0.0;
+        self.left_out_acceleration = 0.0;
+        for (i, body) in bodies.iter().enumerate() {
+            if body.asleep && !body.is_fixed() {
+                self.by_x.push((body.position().x, i as u32));
+                self.by_island.push((body.island, i as u32));
+                self.largest_radius = self.largest_radius.max(body.radius());
+                let a = body.acceleration(settings.gravity).abs().max_element();
+                self.left_out_acceleration = self.left_out_acceleration.max(a);
+            }
+        }
+        self.by_x
+            .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.by_island.sort_unstable();
+    }
+
+    /// Whether the solver's marks kept by index from the last step still fit this one (the
+    /// same bodies, in the same places); records this step's choice (`in_step` if it leaves
+    /// bodies out).
+    pub fn same_indices(&mut self, leaves_out: bool) -> bool {
+        let same = self.last_left_out == leaves_out && (!leaves_out || self.last == self.in_step);
+        if !same {
+            self.last_left_out = leaves_out;
+            if leaves_out {
+                self.last.clone_from(&self.in_step);
+            }
+        }
+        same
+    }
+
+    /// The deepest overlap of a pair with a body left out of the step (the bodies as they
+    /// stand), or `None` if it must be worked out again (then give it to
+    /// [`Dormant::set_left_out_overlap`]).
+    pub fn left_out_overlap(&self) -> Option<f64> {
+        match &self.overlap_for {
+            Some((key, islands)) if Some(*key) == self.key && *islands == self.islands => {
+                Some(self.overlap)
+            }
+            _ => None,
+        }
+    }
+
+    /// Records the deepest overlap of a pair with a body left out, for this choice.
+    pub fn set_left_out_overlap(&mut self, overlap: f64) {
+        self.overlap = overlap;
+        let key = self.key.expect("chosen");
+        match &mut self.overlap_for {
+            Some((k, islands)) => {
+                *k = key;
+                islands.clone_from(&self.islands);
+            }
+            None => self.overlap_for = Some((key, self.islands.clone())),
+        }
+    }
+}

@@ -1,0 +1,233 @@
+//! A bed asleep while something else moves: a step then leaves out the islands asleep beyond
+//! the reach of everything that moves (a bed of thousands costs next to nothing while a ball
+//! bounces elsewhere), and must answer as a step of every body would: what moves moves as it
+//! would alone, whatever reaches the bed within the step strikes it, however fast or however
+//! it got its speed, and the step's statistics are the bodies' own, to the bit.
+
+mod common;
+
+use proptest::prelude::*;
+use sphere_physics::{BodyId, Sleep, SphereDesc, StepStats, World, glam::DVec3};
+
+const DT: f64 = 1.0 / 60.0;
+
+/// A pit of `count` spheres of radius 0.05 (`common::pit`, seed `seed`) with sleeping on,
+/// stepped until every sphere sleeps.
+fn bed_asleep(count: u32, seed: u64) -> World {
+    let mut world = common::pit(count, seed, 0.5, 0.05, 0.0);
+    world.settings_mut().sleep = Some(Sleep::default());
+    for _ in 0..3000 {
+        world.step(DT).unwrap();
+        if world.stats().asleep == count {
+            return world;
+        }
+    }
+    panic!("the bed of {count} did not fall asleep");
+}
+
+/// A ball of radius 0.05 dropped from 1 m onto a fixed sphere of radius 0.1 whose top is at
+/// y = 6.1 (above the pit), both elastic: it bounces straight up and down for ever.
+fn add_bouncer(world: &mut World) -> BodyId {
+    world
+        .add_sphere(
+            SphereDesc::new(0.1)
+                .at(DVec3::new(0.0, 6.0, 0.0))
+                .fixed()
+                .with_restitution(1.0),
+        )
+        .unwrap();
+    world
+        .add_sphere(
+            SphereDesc::new(0.05)
+                .at(DVec3::new(0.0, 7.15, 0.0))
+                .with_restitution(1.0),
+        )
+        .unwrap()
+}
+
+/// The step's statistics are the bodies' own sums, to the bit.
+fn check_stats(world: &mut World, stats: &StepStats, label: &str) {
+    assert_eq!(stats.kinetic_energy, world.kinetic_energy(), "{label}");
+    assert_eq!(stats.momentum, world.momentum(), "{label}");
+    assert_eq!(stats.potential_energy, world.potential_energy(), "{label}");
+    assert_eq!(stats.max_overlap, world.max_overlap(), "{label}");
+    let asleep = world.bodies().iter().filter(|b| b.is_asleep()).count();
+    assert_eq!(stats.asleep as usize, asleep, "{label}");
+}
+
+#[test]
+fn a_ball_bouncing_above_a_bed_asleep_bounces_as_it_would_alone() {
+    let mut world = bed_asleep(120, 1);
+    let bouncer = add_bouncer(&mut world);
+    let mut alone = World::new(world.settings().clone());
+    let alone_bouncer = add_bouncer(&mut alone);
+    let mut bounces = 0;
+    for step in 0..600 {
+        let stats = *world.step(DT).unwrap();
+        check_stats(&mut world, &stats, &format!("step {step}"));
+        assert_eq!(stats.asleep, 120, "step {step}: the bed sleeps on");
+        bounces += stats.collisions;
+        alone.step(DT).unwrap();
+        let (a, b) = (
+            world.body(bouncer).unwrap(),
+            alone.body(alone_bouncer).unwrap(),
+        );
+        assert_eq!(a.position(), b.position(), "step {step}");
+        assert_eq!(a.velocity(), b.velocity(), "step {step}");
+    }
+    // A fall of 1 m takes 0.45 s: about eleven bounces in ten seconds, each as high.
+    assert!((10..=12).contains(&bounces), "{bounces} bounces");
+    let top = world.body(bouncer).unwrap().position().y;
+    assert!(top > 6.1 && top < 7.16, "{top}");
+}
+
+/// A ball fired at the bed from 3 m, so fast that it reaches the bed within one step, strikes
+/// it in that step: the islands within its reach are in the step.
+#[test]
+fn a_ball_fired_from_afar_strikes_the_bed_in_the_step_it_reaches_it() {
+    for speed in [30.0, 300.0, 3000.0] {
+        let mut world = bed_asleep(120, 2);
+        let top = world
+            .bodies()
+            .iter()
+            .filter(|b| !b.is_fixed())
+            .map(|b| b.position().y)
+            .fold(f64::MIN, f64::max);
+        let ball = world
+            .add_sphere(
+                SphereDesc::new(0.05)
+                    .at(DVec3::new(0.01, top + 3.0, 0.02))
+                    .moving(DVec3::new(0.0, -speed, 0.0)),
+            )
+            .unwrap();
+        let mut struck = false;
+        for step in 0..200 {
+            let stats = *world.step(DT).unwrap();
+            check_stats(&mut world, &stats, &format!("{speed} m/s, step {step}"));
+            let radius = 0.05;
+            assert!(
+                stats.max_overlap < 0.1 * radius,
+                "{speed} m/s, step {step}: {} m deep",
+                stats.max_overlap
+            );
+            if world
+                .collisions()
+                .iter()
+                .any(|c| c.a == ball || c.b == ball)
+            {
+                struck = true;
+                break;
+            }
+        }
+        assert!(struck, "{speed} m/s: the ball never struck the bed");
+        let y = world.body(ball).unwrap().position().y;
+        assert!(
+            y > -0.05,
+            "{speed} m/s: the ball went through the bed to {y}"
+        );
+        assert!(world.stats().asleep < 120, "{speed} m/s: the bed woke");
+    }
+}
+
+/// A heavy ball strikes a light pebble that lies between it and the bed: the pebble leaves at
+/// nearly twice the ball's speed, and reaches the bed within the same step. The step's reach
+/// is bounded by the energy the lightest body could take, not by the speeds at its start.
+#[test]
+fn a_pebble_struck_towards_the_bed_strikes_it_in_the_same_step() {
+    let mut world = bed_asleep(120, 3);
+    let top = world
+        .bodies()
+        .iter()
+        .filter(|b| !b.is_fixed())
+        .map(|b| b.position().y)
+        .fold(f64::MIN, f64::max);
+    // One above the other over the bed: the pebble's centre 30 cm above the highest sphere's
+    // (23 cm between them), the heavy ball 5 mm above the pebble, falling at 10 m/s. Struck
+    // within a millisecond, the pebble takes 12 ms to the bed at 20 m/s; a step is 16.7 ms.
+    // Neither is near enough the bed for the speeds at the step's start (10 m/s at most) to
+    // take it there within the step.
+    let pebble = world
+        .add_sphere(
+            SphereDesc::new(0.02)
+                .at(DVec3::new(0.0, top + 0.3, 0.0))
+                .with_density(0.01),
+        )
+        .unwrap();
+    let heavy = world
+        .add_sphere(
+            SphereDesc::new(0.05)
+                .at(DVec3::new(0.0, top + 0.375, 0.0))
+                .moving(DVec3::new(0.0, -10.0, 0.0))
+                .with_density(1000.0),
+        )
+        .unwrap();
+    let stats = *world.step(DT).unwrap();
+    check_stats(&mut world, &stats, "the step of the strikes");
+    let met = |a: BodyId, b: BodyId| {
+        world
+            .collisions()
+            .iter()
+            .any(|c| (c.a == a && c.b == b) || (c.a == b && c.b == a))
+    };
+    assert!(met(heavy, pebble), "the heavy ball strikes the pebble");
+    let struck_bed = world.collisions().iter().any(|c| {
+        let other = if c.a == pebble { c.b } else { c.a };
+        (c.a == pebble || c.b == pebble) && other != heavy
+    });
+    assert!(struck_bed, "the pebble strikes the bed in the same step");
+    assert!(
+        stats.max_overlap < 0.1 * 0.02,
+        "{} m deep",
+        stats.max_overlap
+    );
+    assert!(world.body(pebble).unwrap().position().y > 0.0);
+}
+
+proptest! {
+    #![proptest_config(common::proptest_config(6, common::SEED))]
+
+    /// A bed asleep and balls thrown into the pit from above it, of any size, mass and speed
+    /// (up to 100 m/s): every step's statistics are the bodies' own, nothing goes through the
+    /// floor or is left deep in anything, and the run repeats bit for bit.
+    #[test]
+    fn balls_thrown_at_a_bed_asleep(
+        count in 64u32..150,
+        seed in 0u64..1000,
+        balls in proptest::collection::vec(
+            ((-0.1f64..0.1, 0.0f64..0.3, -0.1f64..0.1), (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0),
+             -1.0f64..2.0, 0.01f64..0.08, -1.0f64..2.0),
+            1..6,
+        ),
+    ) {
+        let run = || {
+            let mut world = bed_asleep(count, seed);
+            // One above the other, 20 cm apart, from a metre above the floor.
+            for (k, &((x, y, z), (vx, vy, vz), speed, radius, density)) in balls.iter().enumerate() {
+                let velocity = DVec3::new(vx, vy, vz) * 10f64.powf(speed);
+                world
+                    .add_sphere(
+                        SphereDesc::new(radius)
+                            .at(DVec3::new(x, 1.0 + y + 0.4 * k as f64, z))
+                            .moving(velocity)
+                            .with_density(10f64.powf(density)),
+                    )
+                    .unwrap();
+            }
+            for step in 0..120 {
+                let stats = *world.step(DT).unwrap();
+                check_stats(&mut world, &stats, &format!("step {step}"));
+                for body in world.bodies().iter().filter(|b| !b.is_fixed()) {
+                    prop_assert!(body.position().is_finite() && body.velocity().is_finite());
+                    prop_assert!(
+                        body.position().y > -body.radius(),
+                        "step {}: through the floor, {}", step, body.position()
+                    );
+                }
+                prop_assert!(stats.max_overlap < 0.025, "step {}: {}", step, stats.max_overlap);
+            }
+            Ok(format!("{:?}", world.bodies()))
+        };
+        let first = run()?;
+        prop_assert_eq!(first, run()?);
+    }
+}

@@ -12,17 +12,18 @@ use sphere_physics::{BodyId, Sleep, SphereDesc, StepStats, World, glam::DVec3};
 const DT: f64 = 1.0 / 60.0;
 
 /// A pit of `count` spheres of radius 0.05 (`common::pit`, seed `seed`) with sleeping on,
-/// stepped until every sphere sleeps.
-fn bed_asleep(count: u32, seed: u64) -> World {
+/// stepped until every sphere sleeps, if that is within 50 s (some beds jiggle on: see the
+/// README's ball pit).
+fn bed_asleep(count: u32, seed: u64) -> Option<World> {
     let mut world = common::pit(count, seed, 0.5, 0.05, 0.0);
     world.settings_mut().sleep = Some(Sleep::default());
     for _ in 0..3000 {
         world.step(DT).unwrap();
         if world.stats().asleep == count {
-            return world;
+            return Some(world);
         }
     }
-    panic!("the bed of {count} did not fall asleep");
+    None
 }
 
 /// A ball of radius 0.05 dropped from 1 m onto a fixed sphere of radius 0.1 whose top is at
@@ -57,7 +58,7 @@ fn check_stats(world: &mut World, stats: &StepStats, label: &str) {
 
 #[test]
 fn a_ball_bouncing_above_a_bed_asleep_bounces_as_it_would_alone() {
-    let mut world = bed_asleep(120, 1);
+    let mut world = bed_asleep(120, 1).expect("the bed falls asleep");
     let bouncer = add_bouncer(&mut world);
     let mut alone = World::new(world.settings().clone());
     let alone_bouncer = add_bouncer(&mut alone);
@@ -86,7 +87,7 @@ fn a_ball_bouncing_above_a_bed_asleep_bounces_as_it_would_alone() {
 #[test]
 fn a_ball_fired_from_afar_strikes_the_bed_in_the_step_it_reaches_it() {
     for speed in [30.0, 300.0, 3000.0] {
-        let mut world = bed_asleep(120, 2);
+        let mut world = bed_asleep(120, 2).expect("the bed falls asleep");
         let top = world
             .bodies()
             .iter()
@@ -134,7 +135,7 @@ fn a_ball_fired_from_afar_strikes_the_bed_in_the_step_it_reaches_it() {
 /// is bounded by the energy the lightest body could take, not by the speeds at its start.
 #[test]
 fn a_pebble_struck_towards_the_bed_strikes_it_in_the_same_step() {
-    let mut world = bed_asleep(120, 3);
+    let mut world = bed_asleep(120, 3).expect("the bed falls asleep");
     let top = world
         .bodies()
         .iter()
@@ -199,8 +200,9 @@ proptest! {
             1..6,
         ),
     ) {
+        prop_assume!(bed_asleep(count, seed).is_some(), "a bed that falls asleep");
         let run = || {
-            let mut world = bed_asleep(count, seed);
+            let mut world = bed_asleep(count, seed).expect("as above");
             // One above the other, 20 cm apart, from a metre above the floor.
             for (k, &((x, y, z), (vx, vy, vz), speed, radius, density)) in balls.iter().enumerate() {
                 let velocity = DVec3::new(vx, vy, vz) * 10f64.powf(speed);

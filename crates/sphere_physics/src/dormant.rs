@@ -31,6 +31,17 @@ const FEWEST_ASLEEP: usize = 64;
 /// bound grows with it) before it gives up and takes every body.
 const RESTARTS: u32 = 8;
 
+/// An island asleep, as the choice looks at it.
+#[derive(Clone, Copy, Debug)]
+struct IslandBox {
+    island: u64,
+    /// The box of its spheres (their surfaces).
+    lo: DVec3,
+    hi: DVec3,
+    largest: f64,
+    lightest: f64,
+}
+
 /// The choice of a step's bodies, and what the bodies left out add to its statistics.
 #[derive(Debug, Default)]
 pub(crate) struct Dormant {
@@ -55,9 +66,14 @@ pub(crate) struct Dormant {
     by_island: Vec<(u64, u32)>,
     /// The largest radius among the bodies asleep.
     largest_radius: f64,
+    /// Each island asleep: the box of its spheres, its largest radius and its lightest mass,
+    /// by island.
+    boxes: Vec<IslandBox>,
     /// The islands taken into the step, sorted.
     islands: Vec<u64>,
-    /// The step's dynamic bodies whose reach is still to be looked at.
+    /// The same, as places in `boxes`, in the order they were taken.
+    taken: Vec<u32>,
+    /// The dynamic bodies awake.
     frontier: Vec<u32>,
     /// The deepest overlap of a pair with a body left out, and the generation and the
     /// islands taken into the step it was worked out for (the same bodies left out: a body
@@ -119,62 +135,85 @@ impl Dormant {
         if !energy.is_finite() {
             return false;
         }
-        let (base, awake) = (self.in_step.len(), self.frontier.len());
+        let base = self.in_step.len();
         let epsilon = settings.tolerance.epsilon();
         let mut restarts = 0;
         'choose: loop {
             self.in_step.truncate(base);
-            self.frontier.truncate(awake);
             self.islands.clear();
+            self.taken.clear();
             let speed = fastest.max((2.0 * energy / lightest).sqrt()) + accelerated * dt;
-            // How close a body of the step and one asleep of radii `r` and `s` must come to be
-            // counted as meeting in it: twice the farthest either could go, a quarter of their
-            // radii for the pushes out of overlaps and resting contacts' reach, and the
-            // tolerances.
-            let reach = |r: f64, s: f64| {
-                r + s
-                    + 2.0 * speed * dt
+            // How far beyond touching a body of the step and one asleep, of radii `r` and `s`,
+            // may be and still meet in the step: twice the farthest either could go, a quarter
+            // of their radii for the pushes out of overlaps and resting contacts' reach, and
+            // the tolerances.
+            let pad = |r: f64, s: f64| {
+                2.0 * speed * dt
                     + 2.0 * accelerated * dt * dt
                     + 0.25 * (r + s)
                     + 8.0 * epsilon * (1.0 + r + s)
             };
-            let mut next = 0;
-            while next < self.frontier.len() {
-                let k = self.frontier[next] as usize;
-                next += 1;
-                let (p, r) = (bodies[k].position(), bodies[k].radius());
-                let wide = reach(r, self.largest_radius);
-                let lo = self.by_x.partition_point(|e| e.0 < p.x - wide);
-                let hi = self.by_x.partition_point(|e| e.0 <= p.x + wide);
-                for e in lo..hi {
+            // The islands within reach of a sphere, or of an island taken (its box, which
+            // holds its spheres), are taken in turn; so many looked at that the choice would
+            // cost more than it saves, and every body steps.
+            let mut looked_at = 0usize;
+            let budget = 8 * n + 1024;
+            let (mut next_body, mut next_island) = (0, 0);
+            loop {
+                let (lo, hi, r) = if next_body < self.frontier.len() {
+                    let body = &bodies[self.frontier[next_body] as usize];
+                    next_body += 1;
+                    let (p, r) = (body.position(), body.radius());
+                    (p, p, r)
+                } else if next_island < self.taken.len() {
+                    let island = &self.boxes[self.taken[next_island] as usize];
+                    next_island += 1;
+                    (island.lo, island.hi, island.largest)
+                } else {
+                    break;
+                };
+                let wide = r + self.largest_radius + pad(r, self.largest_radius);
+                let from = self.by_x.partition_point(|e| e.0 < lo.x - wide);
+                let to = self.by_x.partition_point(|e| e.0 <= hi.x + wide);
+                looked_at += to - from;
+                if looked_at > budget {
+                    return false;
+                }
+                for e in from..to {
                     let b = &bodies[self.by_x[e].1 as usize];
                     let Err(at) = self.islands.binary_search(&b.island) else {
                         continue;
                     };
-                    let near = reach(r, b.radius());
-                    if (b.position() - p).length_squared() > near * near {
+                    let p = b.position();
+                    let near = r + b.radius() + pad(r, b.radius());
+                    let gap = (lo - p).max(p - hi).max(DVec3::ZERO);
+                    if gap.length_squared() > near * near {
                         continue;
                     }
                     // Its island comes into the step.
                     let island = b.island;
                     self.islands.insert(at, island);
+                    let k = self.boxes.partition_point(|x| x.island < island);
+                    let taken = &self.boxes[k];
+                    if taken.lightest < lightest {
+                        // A lighter body: the bound on the speed grows.
+                        lightest = taken.lightest;
+                        restarts += 1;
+                        if restarts > RESTARTS {
+                            return false;
+                        }
+                        continue 'choose;
+                    }
+                    self.taken.push(k as u32);
                     let from = self.by_island.partition_point(|e| e.0 < island);
                     for &(of, m) in &self.by_island[from..] {
                         if of != island {
                             break;
                         }
                         self.in_step.push(m);
-                        self.frontier.push(m);
-                        let mass = bodies[m as usize].mass();
-                        if mass < lightest {
-                            // A lighter body: the bound on the speed grows.
-                            lightest = mass;
-                            restarts += 1;
-                            if restarts > RESTARTS {
-                                return false;
-                            }
-                            continue 'choose;
-                        }
+                    }
+                    if 2 * self.in_step.len() > n {
+                        return false;
                     }
                 }
             }
@@ -220,6 +259,26 @@ impl Dormant {
         self.by_x
             .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         self.by_island.sort_unstable();
+        self.boxes.clear();
+        for &(island, i) in &self.by_island {
+            let body = &bodies[i as usize];
+            let (p, r) = (body.position(), body.radius());
+            match self.boxes.last_mut() {
+                Some(b) if b.island == island => {
+                    b.lo = b.lo.min(p - r);
+                    b.hi = b.hi.max(p + r);
+                    b.largest = b.largest.max(r);
+                    b.lightest = b.lightest.min(body.mass());
+                }
+                _ => self.boxes.push(IslandBox {
+                    island,
+                    lo: p - r,
+                    hi: p + r,
+                    largest: r,
+                    lightest: body.mass(),
+                }),
+            }
+        }
     }
 
     /// Whether the solver's marks kept by index from the last step still fit this one (the

@@ -75,11 +75,17 @@ pub(crate) struct Dormant {
     taken: Vec<u32>,
     /// The dynamic bodies awake.
     frontier: Vec<u32>,
+    /// Every body not asleep (fixed or awake), as world indices in world order: made with
+    /// the index, and kept as bodies are added and removed (a body falls asleep or wakes only
+    /// with a new generation).
+    awake: Vec<u32>,
     /// The deepest overlap of a pair with a body left out, and the generation and the
     /// islands taken into the step it was worked out for (the same bodies left out: a body
     /// added, changed or removed that would change it touches one of them, and wakes it).
     overlap: f64,
     overlap_for: Option<(u64, Vec<u64>)>,
+    /// The potential energy of the bodies left out (for the same choice as `overlap`).
+    potential: f64,
 }
 
 impl Dormant {
@@ -107,16 +113,14 @@ impl Dormant {
         self.frontier.clear();
         let (mut energy, mut fastest, mut lightest, mut accelerated) =
             (0.0f64, 0.0f64, f64::INFINITY, 0.0f64);
-        for (i, body) in bodies.iter().enumerate() {
+        for &i in &self.awake {
+            let body = &bodies[i as usize];
+            debug_assert!(!body.asleep, "a body asleep among those awake");
             if body.is_fixed() {
                 if body.velocity() != DVec3::ZERO {
                     return false;
                 }
-                self.in_step.push(i as u32);
-            } else if body.asleep {
-                if body.velocity() != DVec3::ZERO {
-                    return false;
-                }
+                self.in_step.push(i);
             } else {
                 if body.tether().is_some() {
                     return false;
@@ -127,8 +131,8 @@ impl Dormant {
                 fastest = fastest.max(v);
                 lightest = lightest.min(body.mass());
                 accelerated = accelerated.max(a);
-                self.in_step.push(i as u32);
-                self.frontier.push(i as u32);
+                self.in_step.push(i);
+                self.frontier.push(i);
             }
         }
         // (With none awake, a step changed through the world: only the fixed bodies step.)
@@ -229,6 +233,14 @@ impl Dormant {
 
     /// The body at world index `index` was removed: those after it move down one place.
     pub fn removed(&mut self, index: usize) {
+        if let Ok(at) = self.awake.binary_search(&(index as u32)) {
+            self.awake.remove(at);
+        }
+        for i in self.awake.iter_mut() {
+            if *i as usize > index {
+                *i -= 1;
+            }
+        }
         for (_, i) in self.by_x.iter_mut() {
             if *i as usize > index {
                 *i -= 1;
@@ -241,14 +253,22 @@ impl Dormant {
         }
     }
 
-    /// Indexes the bodies asleep (by x and by island).
+    /// A body was added, at world index `index` (the last): awake.
+    pub fn added(&mut self, index: usize) {
+        self.awake.push(index as u32);
+    }
+
+    /// Indexes the bodies asleep (by x and by island), and lists those awake.
     fn index_asleep(&mut self, bodies: &[Body], settings: &Settings) {
         self.by_x.clear();
         self.by_island.clear();
+        self.awake.clear();
         self.largest_radius = 0.0;
         self.left_out_acceleration = 0.0;
         for (i, body) in bodies.iter().enumerate() {
-            if body.asleep && !body.is_fixed() {
+            if !body.asleep {
+                self.awake.push(i as u32);
+            } else if !body.is_fixed() {
                 self.by_x.push((body.position().x, i as u32));
                 self.by_island.push((body.island, i as u32));
                 self.largest_radius = self.largest_radius.max(body.radius());
@@ -295,21 +315,23 @@ impl Dormant {
         same
     }
 
-    /// The deepest overlap of a pair with a body left out of the step (the bodies as they
-    /// stand), or `None` if it must be worked out again (then give it to
-    /// [`Dormant::set_left_out_overlap`]).
-    pub fn left_out_overlap(&self) -> Option<f64> {
+    /// The deepest overlap of a pair with a body left out of the step and the potential
+    /// energy of those bodies (the bodies as they stand), or `None` if they must be worked
+    /// out again (then give them to [`Dormant::set_left_out`]).
+    pub fn left_out(&self) -> Option<(f64, f64)> {
         match &self.overlap_for {
             Some((key, islands)) if Some(*key) == self.key && *islands == self.islands => {
-                Some(self.overlap)
+                Some((self.overlap, self.potential))
             }
             _ => None,
         }
     }
 
-    /// Records the deepest overlap of a pair with a body left out, for this choice.
-    pub fn set_left_out_overlap(&mut self, overlap: f64) {
+    /// Records the deepest overlap of a pair with a body left out, and their potential
+    /// energy, for this choice.
+    pub fn set_left_out(&mut self, overlap: f64, potential: f64) {
         self.overlap = overlap;
+        self.potential = potential;
         let key = self.key.expect("chosen");
         match &mut self.overlap_for {
             Some((k, islands)) => {

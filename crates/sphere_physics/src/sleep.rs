@@ -122,18 +122,24 @@ impl Sleeper {
     /// After a step of `dt` ending at `now`: wakes the islands of sleeping bodies the step
     /// moved or gave a speed, times each awake body's calm, and puts to sleep each group of
     /// touching bodies that has stayed calm long enough and rests on a still fixed sphere.
-    /// Returns whether any body fell asleep.
+    /// Returns whether any body fell asleep. With `only`, the step took only the bodies of
+    /// those indices (every fixed one and every one awake among them), and left out that many
+    /// dynamic ones, all asleep: only those it took are looked at.
     pub fn after_step(
         &mut self,
         bodies: &mut [Body],
+        only: Option<(&[u32], u32)>,
         solver: &mut Solver,
         sleep: Sleep,
         (gravity, dt, now): (DVec3, f64, f64),
     ) -> bool {
         self.wake.clear();
         let mut ready = false;
-        let (mut moving, mut dynamic) = (false, 0);
-        for body in bodies.iter_mut() {
+        let (mut moving, mut dynamic) = (false, only.map_or(0, |(_, left_out)| left_out as usize));
+        let all = only.is_none().then_some(0..bodies.len());
+        let taken = only.map(|(indices, _)| indices.iter().map(|&i| i as usize));
+        for index in all.into_iter().flatten().chain(taken.into_iter().flatten()) {
+            let body = &mut bodies[index];
             if body.is_fixed() {
                 moving |= body.desc.velocity != DVec3::ZERO;
                 continue;

@@ -339,6 +339,7 @@ impl World {
         desc.validate(|| label(desc.name.as_deref(), id))?;
         self.next_id += 1;
         self.bodies.push(Body::new(id, desc));
+        self.dormant.added(self.bodies.len() - 1);
         self.woken_by(self.bodies.len() - 1);
         Ok(id)
     }
@@ -551,6 +552,7 @@ impl World {
             self.rollback
                 .extend(self.bodies.iter().map(|b| (b.position(), b.velocity())));
         }
+        let mut left_out = false;
         for k in 0..substeps {
             // With sleeping on, a step of one substep may leave out the islands asleep beyond
             // the reach of everything that moves (see `dormant.rs`).
@@ -563,6 +565,7 @@ impl World {
                     sub_dt,
                     self.sleeper.generation(),
                 );
+            left_out = leaves_out;
             if !self.dormant.same_indices(leaves_out) {
                 self.solver.forget_indices();
             }
@@ -584,11 +587,12 @@ impl World {
             };
             let result = if leaves_out {
                 let dormant = &mut self.dormant;
-                let left_out_overlap = match dormant.left_out_overlap() {
-                    Some(overlap) => overlap,
+                let (left_out_overlap, left_out_potential) = match dormant.left_out() {
+                    Some(left_out) => left_out,
                     None => {
-                        // The deepest overlap of a pair with a body left out: such a body
-                        // stays where it is in the step, as does every fixed one.
+                        // The deepest overlap of a pair with a body left out, and their
+                        // potential energy: such a body stays where it is in the step, as
+                        // does every fixed one.
                         let bodies = &self.bodies;
                         let mut taken = std::mem::take(&mut self.taken);
                         taken.clear();
@@ -610,9 +614,15 @@ impl World {
                                 }
                             },
                         );
+                        let potential = bodies
+                            .iter()
+                            .zip(&taken)
+                            .filter(|(b, taken)| !**taken && !b.is_fixed())
+                            .map(|(b, _)| potential_of(b, &self.settings))
+                            .sum();
                         self.taken = taken;
-                        dormant.set_left_out_overlap(deepest);
-                        deepest
+                        dormant.set_left_out(deepest, potential);
+                        (deepest, potential)
                     }
                 };
                 // The step's bodies moved out of the world for the step, and back.
@@ -630,8 +640,10 @@ impl World {
                     std::mem::swap(&mut self.bodies[i as usize], &mut dormant.bodies[k]);
                 }
                 if result.is_ok() {
+                    // (The potential energy summed in another order than
+                    // `World::potential_energy`'s: the same to rounding.)
                     stats.max_overlap = stats.max_overlap.max(left_out_overlap);
-                    stats.potential_energy = potential_energy(&self.bodies, &self.settings);
+                    stats.potential_energy += left_out_potential;
                 }
                 result.map_err(|index| dormant.in_step[index] as usize)
             } else {
@@ -660,9 +672,12 @@ impl World {
         self.profile = self.solver.profile;
         if let Some(sleep) = sleep {
             let step = (self.settings.gravity, dt, self.time);
+            // Only the step's bodies can have moved, woken or been calm.
+            let only =
+                left_out.then_some((&self.dormant.in_step[..], self.dormant.left_out_dynamic));
             let fell_asleep =
                 self.sleeper
-                    .after_step(&mut self.bodies, &mut self.solver, sleep, step);
+                    .after_step(&mut self.bodies, only, &mut self.solver, sleep, step);
             if fell_asleep {
                 // The solver summed them as it wrote the bodies back: now without the speeds
                 // of the bodies that fell asleep.
@@ -704,7 +719,11 @@ impl World {
 
     /// Potential energy of the dynamic bodies in gravity and their constant forces.
     pub fn potential_energy(&self) -> f64 {
-        potential_energy(&self.bodies, &self.settings)
+        self.bodies
+            .iter()
+            .filter(|b| !b.is_fixed())
+            .map(|b| potential_of(b, &self.settings))
+            .sum()
     }
 
     /// Total momentum of the dynamic bodies.
@@ -746,11 +765,7 @@ fn label(name: Option<&str>, id: BodyId) -> String {
     }
 }
 
-/// Potential energy of the dynamic `bodies` in the settings' gravity and their constant forces.
-fn potential_energy(bodies: &[Body], settings: &Settings) -> f64 {
-    bodies
-        .iter()
-        .filter(|b| !b.is_fixed())
-        .map(|b| -(b.mass() * settings.gravity + b.force()).dot(b.position()))
-        .sum()
+/// Potential energy of dynamic `body` in the settings' gravity and its constant force.
+fn potential_of(body: &Body, settings: &Settings) -> f64 {
+    -(body.mass() * settings.gravity + body.force()).dot(body.position())
 }

@@ -14,10 +14,18 @@
 //! integrator, or stepped in substeps, takes every body.
 //!
 //! The islands left out do not move and are not moved in the step; their part of the step's
-//! statistics is worked out here: no kinetic energy or momentum (they are at rest), and the
-//! deepest overlap among them and the still fixed bodies (unchanged while they sleep), which
-//! the step's own deepest overlap is taken together with. The step's scales and collision
-//! budget count them as a step of every body would (see `StepContext`).
+//! statistics is worked out here, once for as long as the same islands are left out: no
+//! kinetic energy or momentum (they are at rest), their potential energy (added to the
+//! step's own: equal to `World::potential_energy` to rounding, summed in another order), and
+//! the deepest overlap among them and the still fixed bodies (unchanged while they sleep),
+//! which the step's own deepest overlap is taken together with. The step's scales and
+//! collision budget count them as a step of every body would (see `StepContext`).
+//!
+//! What it costs: the bodies not asleep, listed as bodies come and go, are looked at once a
+//! step; the islands asleep within reach of each along x (the bodies asleep are indexed by
+//! their centres' x and by island whenever a body falls asleep or wakes), and from each
+//! island taken, by its box, those within its reach; past 8 looks a body in all, the choice
+//! gives up and every body steps.
 
 use glam::DVec3;
 

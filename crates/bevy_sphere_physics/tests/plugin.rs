@@ -1218,6 +1218,14 @@ fn regression_despawning_the_floor_under_a_resting_ball() {
     assert!((v.y + 9.81 * 5.0 * dt).abs() < 1e-9, "{v}");
 }
 
+/// How many spheres the last step left asleep.
+fn asleep(app: &App) -> u32 {
+    app.world()
+        .resource::<SpherePhysicsDiagnostics>()
+        .last
+        .asleep
+}
+
 /// Earth gravity, restitution 0.5, and sleeping on (`Sleep::default()`).
 fn sleeping_under_gravity() -> SpherePhysicsPlugin {
     SpherePhysicsPlugin::default()
@@ -1230,10 +1238,6 @@ fn sleeping_under_gravity() -> SpherePhysicsPlugin {
 fn a_sphere_at_rest_falls_asleep_and_a_game_wakes_it() {
     let mut app = app(sleeping_under_gravity());
     let (_, ball) = ball_on_a_floor(&mut app);
-    let asleep = |app: &App| {
-        let diagnostics = app.world().resource::<SpherePhysicsDiagnostics>();
-        diagnostics.last.asleep
-    };
     // Calm for a second (64 steps), checked four times a second.
     run_steps(&mut app, 90);
     assert_eq!(asleep(&app), 1);
@@ -1274,12 +1278,6 @@ fn asleep_spheres_are_left_alone_and_every_change_still_reaches_them() {
     let body = |app: &App, e: Entity| {
         let physics = app.world().resource::<SpherePhysicsWorld>();
         physics.world.body(physics.body(e)?).cloned()
-    };
-    let asleep = |app: &App| {
-        app.world()
-            .resource::<SpherePhysicsDiagnostics>()
-            .last
-            .asleep
     };
     run_steps(&mut app, 90);
     assert_eq!(asleep(&app), 2);
@@ -1338,12 +1336,6 @@ fn regression_a_sphere_starting_to_move_beside_a_sleeper_is_interpolated() {
     let (_, a) = ball_on_a_floor(&mut app);
     let b = ball(&mut app, DVec3::new(3.0, 0.5, 0.0), DVec3::ZERO);
     run_steps(&mut app, 90);
-    let asleep = |app: &App| {
-        app.world()
-            .resource::<SpherePhysicsDiagnostics>()
-            .last
-            .asleep
-    };
     assert_eq!(asleep(&app), 2);
     let at = position(&app, b);
     // `b` is pushed along the floor; `a` sleeps on.
@@ -1400,12 +1392,7 @@ fn regression_a_change_made_after_prepare_is_kept_for_the_next_step() {
         let (_, pushed) = ball_on_a_floor(&mut app);
         let moved = ball(&mut app, DVec3::new(3.0, 0.5, 0.0), DVec3::ZERO);
         run_steps(&mut app, 90);
-        let asleep = app
-            .world()
-            .resource::<SpherePhysicsDiagnostics>()
-            .last
-            .asleep;
-        assert_eq!(asleep, if sleeping { 2 } else { 0 });
+        assert_eq!(asleep(&app), if sleeping { 2 } else { 0 });
         // `moved` goes to the other side of the floor's top, where it rests as it did.
         let (at, was) = (position(&app, pushed), position(&app, moved));
         let target = DVec3::new(-was.x, was.y, was.z);
@@ -1457,12 +1444,6 @@ fn regression_a_rejected_sphere_moved_by_its_transform_joins_while_others_sleep(
     let mut app = app(sleeping_under_gravity());
     ball_on_a_floor(&mut app);
     run_steps(&mut app, 90);
-    let asleep = |app: &App| {
-        app.world()
-            .resource::<SpherePhysicsDiagnostics>()
-            .last
-            .asleep
-    };
     assert_eq!(asleep(&app), 1);
     let anchor = DVec3::new(5.0, 3.0, 0.0);
     let hanging = app

@@ -46,6 +46,16 @@ fn add_bouncer(world: &mut World) -> BodyId {
         .unwrap()
 }
 
+/// The height of the highest centre among the dynamic bodies.
+fn highest(world: &World) -> f64 {
+    world
+        .bodies()
+        .iter()
+        .filter(|b| !b.is_fixed())
+        .map(|b| b.position().y)
+        .fold(f64::MIN, f64::max)
+}
+
 /// The step's statistics are the bodies' own sums, to the bit (the potential energy to
 /// rounding: a step that leaves bodies out adds theirs to its own).
 fn check_stats(world: &mut World, stats: &StepStats, label: &str) {
@@ -94,12 +104,7 @@ fn a_ball_bouncing_above_a_bed_asleep_bounces_as_it_would_alone() {
 fn a_ball_fired_from_afar_strikes_the_bed_in_the_step_it_reaches_it() {
     for speed in [30.0, 300.0, 3000.0] {
         let mut world = bed_asleep(120, 2).expect("the bed falls asleep");
-        let top = world
-            .bodies()
-            .iter()
-            .filter(|b| !b.is_fixed())
-            .map(|b| b.position().y)
-            .fold(f64::MIN, f64::max);
+        let top = highest(&world);
         let ball = world
             .add_sphere(
                 SphereDesc::new(0.05)
@@ -142,12 +147,7 @@ fn a_ball_fired_from_afar_strikes_the_bed_in_the_step_it_reaches_it() {
 #[test]
 fn a_pebble_struck_towards_the_bed_strikes_it_in_the_same_step() {
     let mut world = bed_asleep(120, 3).expect("the bed falls asleep");
-    let top = world
-        .bodies()
-        .iter()
-        .filter(|b| !b.is_fixed())
-        .map(|b| b.position().y)
-        .fold(f64::MIN, f64::max);
+    let top = highest(&world);
     // One above the other over the bed: the pebble's centre 30 cm above the highest sphere's
     // (23 cm between them), the heavy ball 5 mm above the pebble, falling at 10 m/s. Struck
     // within a millisecond, the pebble takes 12 ms to the bed at 20 m/s; a step is 16.7 ms.

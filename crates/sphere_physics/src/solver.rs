@@ -265,6 +265,28 @@ pub(crate) struct Solver {
     fallback_strung: Vec<(u32, u32)>,
     /// Scratch for [`Solver::fall_back`]: the deep pushes it holds back, `(a, b, push)`.
     fallback_pushes: Vec<(u32, u32, f64)>,
+    /// Scratch for `Solver::choose_crowd`: union–find over the segments, then each dynamic
+    /// one's root; and per root its dynamic segments and the sum of their versions.
+    crowd_parent: Vec<u32>,
+    crowd_groups: Vec<fallback::Group>,
+    /// Scratch for `Solver::choose_crowd`: the bodies a fallback leaves out, and the largest
+    /// dynamic radius.
+    crowd_left: Vec<u32>,
+    crowd_radius: f64,
+    /// Scratch for `Solver::choose_crowd`: each body's candidates as it found them (its range
+    /// of `crowd_candidates` by segment), and whether they still stand for the first round of
+    /// the fallback's first solve.
+    crowd_candidates: Vec<u32>,
+    crowd_ranges: Vec<(u32, u32)>,
+    crowd_found: bool,
+    /// Scratch for [`Solver::fall_back`]: the segments changed at its time whose pairs it must
+    /// test again if it leaves them to the event loop (dirty ones, and those it ended a push
+    /// of).
+    fallback_requery: Vec<u32>,
+    /// The segments a fallback of this step took (one bit each), and their list: their drifts
+    /// are final, and the event loop defers their later impacts.
+    fallen_bits: Vec<u64>,
+    fallen: Vec<u32>,
     /// Pairs touching but not resting, or apart by less than [`Solver::near_reach`] beyond the
     /// contact band with a body that rested in the last step, at the start of the step:
     /// `(a, b, normal, distance)`. Those with a body in a resting contact join the resting
@@ -583,6 +605,11 @@ fn moving(segments: &[Segment]) -> impl Fn(u32) -> bool + Copy + '_ {
 
 /// How many bodies ahead the write-back asks for a body's segment.
 const WRITE_BACK_AHEAD: usize = 16;
+
+/// The most fallbacks in one step (see [`Solver::fall_back`]): each takes the crowds that
+/// spent their share of the collision budget and leaves the rest to the event loop, with what
+/// is left of their shares; the last takes every dynamic body.
+const MAX_FALLBACKS: u32 = 4;
 
 /// The most rounds of [`Solver::fall_back`]'s solve (each adds the pairs the last brought
 /// together; a pit of 1000 or 10 000 landing needs two or three, with [`FALLBACK_MARGIN`],
@@ -1049,15 +1076,17 @@ impl Solver {
     /// The event loop: the queued impacts taken in time order and solved, each changed body's
     /// pairs tested again, until the queue is empty; within the collision budget of
     /// `max_collisions_per_body` for each of the `dynamic` bodies, past which the rest of the
-    /// step is solved at once (see `Solver::fall_back`).
+    /// step is solved at once for the crowds that spent it (see `Solver::fall_back`), and the
+    /// other bodies go on with what is left of their shares.
     fn run_events(&mut self, dynamic: u32, ctx: &StepContext<'_>, stats: &mut StepStats) {
         let (dt, settings) = (ctx.dt, ctx.settings);
         self.instant.start(f64::NEG_INFINITY, self.segments.len());
-        let budget = settings
+        let mut budget = settings
             .max_collisions_per_body
             .saturating_mul(dynamic.max(1));
         let mut events = 0u32;
-        let mut fell_back = false;
+        let mut fallbacks = 0u32;
+        self.clear_fallen();
         // One body's share: a sphere caught between fixed ones (wedged between two it
         // overlaps, or pressed by a kinematic one) bounces between them without end, and
         // would otherwise spend the whole budget, leaving every other sphere's collisions to
@@ -1068,19 +1097,22 @@ impl Solver {
         loop {
             // The instant of the dirty segments ends: their pairs are tested in full now,
             // before any later impact is taken (the gathering below stops short of later
-            // impacts while any body is dirty). When the budget has run out, the fallback
-            // takes every pair from here (their boxes must be in place for it), or, if it
-            // has run already, the rest is deferred: their impacts are not sought again.
-            // (It must start here, not at the next impact taken: there may be none queued,
-            // and the dirty bodies' later impacts were never sought. A pit of 23 landing
-            // ended a step with two spheres 7% of a radius into each other, unseen.)
+            // impacts while any body is dirty). When the budget has run out, a fallback
+            // takes the crowds' pairs from here (their boxes must be in place for it) and
+            // tests the other dirty bodies' pairs in full, or, if the last has run already,
+            // the rest is deferred: their impacts are not sought again. (It must start
+            // here, not at the next impact taken: there may be none queued, and the dirty
+            // bodies' later impacts were never sought. A pit of 23 landing ended a step
+            // with two spheres 7% of a radius into each other, unseen.)
             if !self.dirty.is_empty() {
                 if events >= budget {
-                    self.drop_dirty();
-                    if !fell_back {
-                        fell_back = true;
+                    if fallbacks < MAX_FALLBACKS {
+                        fallbacks += 1;
                         let t = self.stamp_time;
-                        self.fall_back(t, ctx, stats);
+                        let left = self.fall_back(t, fallbacks == MAX_FALLBACKS, ctx, stats);
+                        budget = events.saturating_add(left);
+                    } else {
+                        self.drop_dirty();
                     }
                 } else if self
                     .queue
@@ -1103,16 +1135,17 @@ impl Solver {
                 self.bend_again(event.a as usize, event.time, ctx, stats);
                 continue;
             }
-            if events >= budget {
-                if !fell_back {
-                    fell_back = true;
-                    self.fall_back(event.time, ctx, stats);
-                    // The impacts still queued between bodies the fallback left alone are
-                    // counted as deferred below; the rest are stale now.
-                    if !self.is_current(&event) {
-                        continue;
-                    }
+            if events >= budget && fallbacks < MAX_FALLBACKS {
+                fallbacks += 1;
+                let left = self.fall_back(event.time, fallbacks == MAX_FALLBACKS, ctx, stats);
+                budget = events.saturating_add(left);
+                // The impacts still queued between bodies the fallback took (or of a body on
+                // a string) are counted as deferred below; those it changed are stale now.
+                if !self.is_current(&event) {
+                    continue;
                 }
+            }
+            if events >= budget || (fallbacks > 0 && self.has_fallen(&event)) {
                 stats.collisions_deferred = stats.collisions_deferred.saturating_add(1);
                 continue;
             }
@@ -1126,7 +1159,12 @@ impl Solver {
                     break;
                 }
                 self.queue.pop();
-                if self.is_current(&next) {
+                if !self.is_current(&next) {
+                    continue;
+                }
+                if fallbacks > 0 && self.has_fallen(&next) {
+                    stats.collisions_deferred = stats.collisions_deferred.saturating_add(1);
+                } else {
                     self.group.push(next);
                 }
             }

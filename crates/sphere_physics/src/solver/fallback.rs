@@ -5,43 +5,130 @@ use super::*;
 
 impl Solver {
     /// When the step's collision budget runs out at time `t` (a crowd landing at once, where
-    /// each collision brings on more): every dynamic body is moved to `t`, and every pair that
-    /// could meet in the rest of the step is solved at once, as resting contacts are, each
-    /// allowed to close no further than half the contact band short of touching by the step's
-    /// end (an overlapping one to part as a resting contact does): restitution 0, momentum
-    /// kept, no energy gained beyond a stack's creep (a deep overlap is undone by a push taken
-    /// off at the step's end, see below). The solve goes in rounds, each
-    /// adding the pairs the last one's changes bring together (the first also those within
-    /// [`FALLBACK_MARGIN`] of that, which spares most later rounds), until a round adds none; after
-    /// [`FALLBACK_ROUNDS`] the pairs still added are left unsolved and counted as deferred.
-    /// Each round sweeps until the impulses settle as the step's resting solve does (the first
-    /// at most [`RESTING_SWEEPS`] times, later ones [`FALLBACK_LATER_SWEEPS`]), and after the
-    /// last round up to [`FALLBACK_FINISH_SWEEPS`] more while a pair still closes well past its
-    /// allowance (a long chain, see `fallback_excess`); the deep pushes held back then go on
-    /// top, each of their rounds finished the same way (see [`Solver::push_on`]). The impacts
-    /// left in the queue are then stale, and the step drifts to its end. Bodies on strings are
-    /// left out (the solve holds no string): their pairs that could meet are left to the
-    /// budget's deferral and counted as deferred, and their own impacts and bends stay queued.
-    pub(super) fn fall_back(&mut self, t: f64, ctx: &StepContext<'_>, stats: &mut StepStats) {
+    /// each collision brings on more): every dynamic body is moved to `t`, and the crowds that
+    /// spent the budget are taken (see [`Solver::choose_crowd`]; every dynamic body if
+    /// `last`). Every pair of theirs that could meet in the rest of the step is solved at
+    /// once, as resting contacts are, each allowed to close no further than half the contact
+    /// band short of touching by the step's end (an overlapping one to part as a resting
+    /// contact does): restitution 0, momentum kept, no energy gained beyond a stack's creep
+    /// (a deep overlap is undone by a push taken off at the step's end, see below). The solve
+    /// goes in rounds, each adding the pairs the last one's changes bring together (the first
+    /// also those within [`FALLBACK_MARGIN`] of that, which spares most later rounds), until a
+    /// round adds none; after [`FALLBACK_ROUNDS`] the pairs still added are left unsolved and
+    /// counted as deferred. Each round sweeps until the impulses settle as the step's resting
+    /// solve does (the first at most [`RESTING_SWEEPS`] times, later ones
+    /// [`FALLBACK_LATER_SWEEPS`]), and after the last round up to [`FALLBACK_FINISH_SWEEPS`]
+    /// more while a pair still closes well past its allowance (a long chain, see
+    /// `fallback_excess`); the deep pushes held back then go on top, each of their rounds
+    /// finished the same way (see [`Solver::push_on`]). The taken bodies' impacts left in the
+    /// queue are then stale, and they drift to the step's end. Bodies on strings are left out
+    /// (the solve holds no string): their pairs that could meet are left to the budget's
+    /// deferral and counted as deferred, and their own impacts and bends stay queued.
+    ///
+    /// The groups left out that the solve's drifts may reach are solved the same way in
+    /// turn (see [`Solver::reached_groups`]), up to [`FALLBACK_FOLLOW_UPS`] times, after which
+    /// every body not yet taken is. The bodies taken, and those a solve changes, are marked
+    /// fallen: their later impacts are deferred. The others go on meeting exactly in the event
+    /// loop, their pairs changed at `t` (dirty ones, those whose push ended) tested again
+    /// here. Returns how many more collisions the others may take: what is left of their
+    /// shares of the budget (0 if every body was taken).
+    pub(super) fn fall_back(
+        &mut self,
+        t: f64,
+        last: bool,
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) -> u32 {
+        // The bodies changed at `t` whose pairs are not yet tested: tested at the end if the
+        // fallback leaves them to the event loop.
+        self.crowd_found = false;
+        self.fallback_requery.clear();
+        self.fallback_requery.extend_from_slice(&self.dirty);
+        self.drop_dirty();
         if t >= ctx.dt {
-            return;
+            return 0;
         }
         let rest = ctx.dt - t;
         // The pushes end (see `Solver::end_pushes`): the solve below answers the velocities
         // without them.
         self.end_pushes(t, ctx);
+        self.fallback_requery.extend_from_slice(&self.touched);
         for segment in &mut self.segments {
             segment.advance_to(t);
         }
-        self.resting.clear();
-        self.fallback_pairs.clear();
         let mut bodies = std::mem::take(&mut self.local_bodies);
         bodies.clear();
         bodies.extend((0..self.segments.len() as u32).filter(|&k| {
             !self.segments[k as usize].is_fixed() && self.string_of(k as usize).is_none()
         }));
-        self.fallback_pushes.clear();
         let mut candidates = std::mem::take(&mut self.candidates);
+        let mut left = if last {
+            0
+        } else {
+            self.choose_crowd(&mut bodies, &mut candidates, rest, ctx)
+        };
+        // The crowds are solved, then every group left out that the solve's drifts may now
+        // reach (see `Solver::reached_groups`), and so on; after `FALLBACK_FOLLOW_UPS` such
+        // solves every body not yet taken is.
+        let mut solves = 0;
+        loop {
+            for &k in &bodies {
+                self.mark_fallen(k);
+            }
+            self.solve_fallback(t, &mut bodies, &mut candidates, ctx, stats);
+            solves += 1;
+            if left == 0 {
+                break;
+            }
+            left = self.reached_groups(&mut bodies, &mut candidates, rest, ctx);
+            if bodies.is_empty() {
+                break;
+            }
+            if solves > FALLBACK_FOLLOW_UPS {
+                bodies.clear();
+                bodies.extend((0..self.segments.len() as u32).filter(|&k| {
+                    !self.segments[k as usize].is_fixed() && !self.is_fallen(k as usize)
+                }));
+                left = 0;
+            }
+        }
+        self.local_bodies = bodies;
+        self.candidates = candidates;
+        stats.fell_back = true;
+        if left > 0 {
+            // A new instant: an impact left to the event loop at `t` is not solved together
+            // with the contacts of bodies the fallback took (their drifts are final).
+            self.instant.start(t, self.segments.len());
+            // The bodies left to the event loop that changed at `t` (dirty, or a push ended):
+            // their pairs tested in full from here.
+            for i in 0..self.fallback_requery.len() {
+                let k = self.fallback_requery[i];
+                if !self.is_fallen(k as usize) {
+                    self.touch(k);
+                }
+            }
+            self.caching = false;
+            self.requery_full(t, ctx, stats);
+            self.clear_touched();
+        }
+        left
+    }
+
+    /// One solve of [`Solver::fall_back`] at time `t`: from `bodies` (each dynamic), in
+    /// rounds, then its finishing sweeps, exact solves and deep pushes, its contacts recorded
+    /// and the bodies it changed given their drifts to the step's end.
+    fn solve_fallback(
+        &mut self,
+        t: f64,
+        bodies: &mut Vec<u32>,
+        candidates: &mut Vec<u32>,
+        ctx: &StepContext<'_>,
+        stats: &mut StepStats,
+    ) {
+        let rest = ctx.dt - t;
+        self.resting.clear();
+        self.fallback_pairs.clear();
+        self.fallback_pushes.clear();
         // The solve changes velocities, which may bring other pairs together: rounds, each
         // adding the pairs the last one's changes could bring within the band, until none
         // does. The finishing sweeps and exact solves after the rounds change velocities
@@ -50,7 +137,7 @@ impl Solver {
         let (mut round, mut passes) = (0, 0);
         loop {
             let pass_start = self.resting.len();
-            self.fallback_rounds(&mut round, &mut bodies, &mut candidates, rest, ctx, stats);
+            self.fallback_rounds(&mut round, bodies, candidates, rest, ctx, stats);
             if passes > 0 && self.resting.len() == pass_start {
                 break;
             }
@@ -75,7 +162,7 @@ impl Solver {
             // The next pass's rounds start from the bodies pressed now (none takes the first
             // round's margin again).
             round = round.max(1);
-            self.pressed_bodies(&mut bodies, ctx);
+            self.pressed_bodies(bodies, ctx);
         }
         let threshold = self.sweep_threshold();
         // The deep pushes held back above go on top, as the step's resting solve's do (see
@@ -98,11 +185,11 @@ impl Solver {
             }
             self.push_saved.clear();
         }
-        self.local_bodies = bodies;
         self.record_resting(t, ctx, stats);
         self.resting.clear();
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
+            self.mark_fallen(k as u32);
             self.versions[k] += 1;
             self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
             self.broad.update(k, &self.boxes[k]);
@@ -116,9 +203,8 @@ impl Solver {
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;
             candidates.clear();
-            self.broad
-                .collect_overlapping(k, &self.boxes, &mut candidates);
-            for &m in &candidates {
+            self.broad.collect_overlapping(k, &self.boxes, candidates);
+            for &m in candidates.iter() {
                 let m = m as usize;
                 let reach = self.segments[k].radius() + self.segments[m].radius();
                 let apart = (self.final_position(m, ctx.dt) - self.final_position(k, ctx.dt))
@@ -128,9 +214,318 @@ impl Solver {
                 }
             }
         }
-        self.candidates = candidates;
         self.clear_touched();
-        stats.fell_back = true;
+    }
+
+    /// Keeps in `bodies` (every dynamic body not on a string) only the crowds that spent their
+    /// share of the step's collision budget, and returns what is left of the others' shares
+    /// (0, with every body kept, if it takes them all).
+    ///
+    /// The groups are the dynamic bodies joined by pairs that may come within the band over
+    /// the `rest` of the step (as the fallback's first round takes them: fixed bodies join
+    /// nothing), and the groups not spent joined in turn while they may meet at the fastest
+    /// their kinetic energy allows (see [`Group::speed`]). A group spent its share when its
+    /// bodies' drift changes this step (their versions) reach `max_collisions_per_body` for
+    /// each, or when a kinematic sphere may reach it. None may have spent its share when the
+    /// budget counted impacts that changed nothing, or bodies left out of the step (see
+    /// `crate::dormant`): then every body is kept. So too in a world with strings (a strung
+    /// body's bends are not bounded by its energy), or if the groups still grow after
+    /// [`CROWD_PASSES`] passes.
+    fn choose_crowd(
+        &mut self,
+        bodies: &mut Vec<u32>,
+        candidates: &mut Vec<u32>,
+        rest: f64,
+        ctx: &StepContext<'_>,
+    ) -> u32 {
+        if self.strings {
+            return 0;
+        }
+        let n = self.segments.len();
+        let mut parent = std::mem::take(&mut self.crowd_parent);
+        parent.clear();
+        parent.extend(0..n as u32);
+        // Each body's candidates are kept for the solve's first round (see
+        // `Solver::fallback_rounds`).
+        self.crowd_candidates.clear();
+        self.crowd_ranges.clear();
+        self.crowd_ranges.resize(n, (0, 0));
+        self.crowd_found = true;
+        for &k in bodies.iter() {
+            let k = k as usize;
+            candidates.clear();
+            let swept = self.boxes[k];
+            let grow = DVec3::splat(FALLBACK_MARGIN * 2.0 * self.segments[k].radius());
+            self.boxes[k].lo -= grow;
+            self.boxes[k].hi += grow;
+            self.broad.collect_overlapping(k, &self.boxes, candidates);
+            self.boxes[k] = swept;
+            self.crowd_ranges[k] = (self.crowd_candidates.len() as u32, candidates.len() as u32);
+            self.crowd_candidates.extend_from_slice(candidates);
+            for &m in candidates.iter() {
+                let m = m as usize;
+                if m == k || self.segments[m].is_fixed() {
+                    continue;
+                }
+                if union_root(&mut parent, k) != union_root(&mut parent, m)
+                    && self.may_close(k, m, FALLBACK_MARGIN, rest, ctx)
+                {
+                    union_join(&mut parent, k, m);
+                }
+            }
+        }
+        let mut groups = std::mem::take(&mut self.crowd_groups);
+        groups.clear();
+        groups.resize(n, Group::default());
+        let share = u64::from(ctx.settings.max_collisions_per_body);
+        self.crowd_radius = 0.0;
+        for &k in bodies.iter() {
+            let k = k as usize;
+            let root = union_root(&mut parent, k);
+            let segment = &self.segments[k];
+            self.crowd_radius = self.crowd_radius.max(segment.radius());
+            groups[root].join(&Group::of(
+                segment,
+                self.extra(k).inverse_mass,
+                self.versions[k],
+            ));
+        }
+        let mut crowd = 0;
+        for &k in bodies.iter() {
+            let group = &mut groups[k as usize];
+            // A group whose reach is not finite (a speed or a mass out of range) is taken:
+            // the queries below need finite boxes.
+            if group.count > 0
+                && (group.versions >= share * u64::from(group.count) || !group.speed().is_finite())
+            {
+                group.crowd = true;
+            }
+        }
+        for &k in bodies.iter() {
+            crowd += usize::from(groups[union_root(&mut parent, k as usize)].crowd);
+        }
+        let mut taken_all = crowd == 0 || crowd == bodies.len();
+        // The groups left out, joined while they may meet.
+        let mut pass = 0;
+        while !taken_all {
+            let mut joined = false;
+            for &k in bodies.iter() {
+                let k = k as usize;
+                let root = union_root(&mut parent, k);
+                if groups[root].crowd {
+                    continue;
+                }
+                let speed = groups[root].speed();
+                self.query_reach(k, 2.0 * speed * rest, candidates, ctx);
+                for &m in candidates.iter() {
+                    let m = m as usize;
+                    let sm = &self.segments[m];
+                    let root = union_root(&mut parent, k);
+                    if sm.is_fixed() {
+                        // A kinematic sphere may bring it any energy.
+                        groups[root].crowd |= sm.velocity != DVec3::ZERO;
+                        continue;
+                    }
+                    let other = union_root(&mut parent, m);
+                    if other == root || groups[other].crowd {
+                        continue;
+                    }
+                    let reach = (groups[root].speed() + groups[other].speed()) * rest;
+                    if self.within_reach(k, m, reach, ctx) {
+                        union_join(&mut parent, root, other);
+                        let (low, high) = (root.min(other), root.max(other));
+                        let merged = groups[high];
+                        groups[low].join(&merged);
+                        groups[low].crowd |= !groups[low].speed().is_finite();
+                        joined = true;
+                    }
+                }
+            }
+            pass += 1;
+            if !joined {
+                break;
+            }
+            taken_all = pass == CROWD_PASSES;
+        }
+        let mut left = 0u64;
+        self.crowd_left.clear();
+        if !taken_all {
+            for &k in bodies.iter() {
+                let root = union_root(&mut parent, k as usize);
+                parent[k as usize] = root as u32;
+                let group = &groups[root];
+                if !group.crowd {
+                    self.crowd_left.push(k);
+                    if root == k as usize {
+                        left += (share * u64::from(group.count)).saturating_sub(group.versions);
+                    }
+                }
+            }
+            taken_all = self.crowd_left.len() == bodies.len();
+            bodies.retain(|&k| groups[parent[k as usize] as usize].crowd);
+        }
+        self.crowd_parent = parent;
+        self.crowd_groups = groups;
+        if taken_all {
+            self.crowd_left.clear();
+            return 0;
+        }
+        u32::try_from(left).unwrap_or(u32::MAX).max(1)
+    }
+
+    /// After a solve of the fallback: sets `bodies` to the bodies left out (see
+    /// [`Solver::choose_crowd`]) of each group that may reach a body the fallback took (its
+    /// drift final now) at the fastest its energy allows, or that lost a body to the solve,
+    /// and returns what is left of the shares of the groups still left out.
+    fn reached_groups(
+        &mut self,
+        bodies: &mut Vec<u32>,
+        candidates: &mut Vec<u32>,
+        rest: f64,
+        ctx: &StepContext<'_>,
+    ) -> u32 {
+        bodies.clear();
+        let left_out = std::mem::take(&mut self.crowd_left);
+        let mut groups = std::mem::take(&mut self.crowd_groups);
+        for &k in &left_out {
+            if self.is_fallen(k as usize) {
+                groups[self.crowd_parent[k as usize] as usize].crowd = true;
+            }
+        }
+        for &k in &left_out {
+            let k = k as usize;
+            let root = self.crowd_parent[k] as usize;
+            if groups[root].crowd {
+                continue;
+            }
+            let reach = groups[root].speed() * rest;
+            self.query_reach(k, reach, candidates, ctx);
+            let at = self.segments[k].position;
+            for &m in candidates.iter() {
+                let m = m as usize;
+                if m == k || !self.is_fallen(m) {
+                    continue;
+                }
+                // The nearest the taken body's drift comes to where this one is now.
+                let sm = &self.segments[m];
+                let speed = sm.velocity.length_squared();
+                let s = if speed > 0.0 {
+                    ((at - sm.position).dot(sm.velocity) / speed).clamp(0.0, rest)
+                } else {
+                    0.0
+                };
+                let nearest = sm.position + sm.velocity * s;
+                let within = CROWD_REACH_FACTOR * reach
+                    + self.segments[k].radius()
+                    + sm.radius()
+                    + contact_band(&self.segments[k], sm, ctx.settings);
+                if (nearest - at).length_squared() <= within * within {
+                    groups[root].crowd = true;
+                    break;
+                }
+            }
+        }
+        let share = u64::from(ctx.settings.max_collisions_per_body);
+        let mut left = 0u64;
+        let mut kept = left_out;
+        kept.retain(|&k| {
+            let root = self.crowd_parent[k as usize] as usize;
+            let group = &groups[root];
+            if group.crowd {
+                if !self.is_fallen(k as usize) {
+                    bodies.push(k);
+                }
+                return false;
+            }
+            if root == k as usize {
+                left += (share * u64::from(group.count)).saturating_sub(group.versions);
+            }
+            true
+        });
+        self.crowd_left = kept;
+        self.crowd_groups = groups;
+        u32::try_from(left).unwrap_or(u32::MAX).max(1)
+    }
+
+    /// Sets `candidates` to the bodies whose boxes may hold a body within `reach` (times
+    /// [`CROWD_REACH_FACTOR`]) of touching segment `k` where it is now, give or take the
+    /// contact band.
+    fn query_reach(
+        &mut self,
+        k: usize,
+        reach: f64,
+        candidates: &mut Vec<u32>,
+        ctx: &StepContext<'_>,
+    ) {
+        candidates.clear();
+        let segment = &self.segments[k];
+        let r = segment.radius();
+        let band = 2e-6 * r + ctx.settings.tolerance.epsilon() * (1.0 + r + self.crowd_radius);
+        let grow = DVec3::splat(r + CROWD_REACH_FACTOR * reach + band);
+        let swept = self.boxes[k];
+        self.boxes[k].lo = segment.position - grow;
+        self.boxes[k].hi = segment.position + grow;
+        self.broad.collect_overlapping(k, &self.boxes, candidates);
+        self.boxes[k] = swept;
+    }
+
+    /// Whether segments `a` and `b`, where they are now, lie within `reach` (times
+    /// [`CROWD_REACH_FACTOR`]) of touching, give or take the contact band.
+    fn within_reach(&self, a: usize, b: usize, reach: f64, ctx: &StepContext<'_>) -> bool {
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let within = CROWD_REACH_FACTOR * reach
+            + sa.radius()
+            + sb.radius()
+            + contact_band(sa, sb, ctx.settings);
+        (sb.position - sa.position).length_squared() <= within * within
+    }
+
+    /// Whether segments `a` and `b`, each at its position now, may come within half their
+    /// contact band of touching over the `rest` of the step, at their velocities now, or
+    /// within `margin` of their reach beyond that (as the fallback's rounds take pairs in).
+    fn may_close(&self, a: usize, b: usize, margin: f64, rest: f64, ctx: &StepContext<'_>) -> bool {
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let d = sb.position - sa.position;
+        let distance = d.length();
+        if distance == 0.0 {
+            return true;
+        }
+        let normal = d / distance;
+        let reach = sa.radius() + sb.radius();
+        let band = contact_band(sa, sb, ctx.settings);
+        let approach = -(sb.velocity - sa.velocity).dot(normal);
+        approach * rest + margin * reach >= distance - reach - 0.5 * band
+    }
+
+    /// Whether segment `k` was taken by a fallback of this step, or is on a string (the
+    /// fallback holds no string: such a body's impacts after one are deferred).
+    pub(super) fn is_fallen(&self, k: usize) -> bool {
+        bit(&self.fallen_bits, k) || self.string_of(k).is_some()
+    }
+
+    /// Whether either of `event`'s bodies [`Solver::is_fallen`].
+    pub(super) fn has_fallen(&self, event: &Event) -> bool {
+        self.is_fallen(event.a as usize) || self.is_fallen(event.b as usize)
+    }
+
+    /// Marks segment `k` taken by a fallback of this step.
+    fn mark_fallen(&mut self, k: u32) {
+        let (word, bit) = (k as usize / 64, 1u64 << (k % 64));
+        if self.fallen_bits.len() <= word {
+            self.fallen_bits.resize(word + 1, 0);
+        }
+        if self.fallen_bits[word] & bit == 0 {
+            self.fallen_bits[word] |= bit;
+            self.fallen.push(k);
+        }
+    }
+
+    /// Forgets the bodies the last step's fallbacks took.
+    pub(super) fn clear_fallen(&mut self) {
+        for &k in &self.fallen {
+            self.fallen_bits[k as usize / 64] = 0;
+        }
+        self.fallen.clear();
     }
 
     /// The fallback's rounds (see [`Solver::fall_back`]), from round `round` on, each taking
@@ -159,17 +554,26 @@ impl Solver {
             // it closes.
             let margin = if *round == 0 { FALLBACK_MARGIN } else { 0.0 };
             self.fallback_strung.clear();
+            // The first round of a fallback's first solve finds the candidates
+            // `Solver::choose_crowd` found (the same boxes, nothing moved since).
+            let found = *round == 0 && self.crowd_found;
             for &k in bodies.iter() {
                 let k = k as usize;
                 candidates.clear();
-                let swept = self.boxes[k];
-                if margin > 0.0 {
-                    let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
-                    self.boxes[k].lo -= grow;
-                    self.boxes[k].hi += grow;
+                if found {
+                    let (start, len) = self.crowd_ranges[k];
+                    let (start, len) = (start as usize, len as usize);
+                    candidates.extend_from_slice(&self.crowd_candidates[start..start + len]);
+                } else {
+                    let swept = self.boxes[k];
+                    if margin > 0.0 {
+                        let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
+                        self.boxes[k].lo -= grow;
+                        self.boxes[k].hi += grow;
+                    }
+                    self.broad.collect_overlapping(k, &self.boxes, candidates);
+                    self.boxes[k] = swept;
                 }
-                self.broad.collect_overlapping(k, &self.boxes, candidates);
-                self.boxes[k] = swept;
                 for &m in candidates.iter() {
                     let m = m as usize;
                     // Each pair once: from its first body of this round's.
@@ -231,6 +635,7 @@ impl Solver {
                     self.push_resting(key.0, key.1, normal, bias, press, gap > band);
                 }
             }
+            self.crowd_found = false;
             if !self.fallback_strung.is_empty() {
                 // Each counted once: seen again by a later round, they are skipped above.
                 let left = u32::try_from(self.fallback_strung.len()).unwrap_or(u32::MAX);
@@ -288,5 +693,64 @@ impl Solver {
             self.boxes[k] = swept_box(&self.segments[k], ctx.dt, ctx.settings);
             self.broad.update(k, &self.boxes[k]);
         }
+    }
+}
+
+/// How much farther than their energy allows (see [`Group::speed`]) the bodies left out of a
+/// fallback are taken to reach: the event loop's impacts add no energy but rounding's.
+const CROWD_REACH_FACTOR: f64 = 1.25;
+
+/// The most passes of [`Solver::choose_crowd`] joining the groups left out that may meet;
+/// past them the fallback takes every body.
+const CROWD_PASSES: u32 = 4;
+
+/// The most solves of [`Solver::fall_back`] after its first for the groups its drifts may
+/// reach; past them it takes every body still left out.
+const FALLBACK_FOLLOW_UPS: u32 = 3;
+
+/// A group of dynamic bodies of [`Solver::choose_crowd`], as kept at its root.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Group {
+    /// Its dynamic bodies.
+    count: u32,
+    /// The sum of their versions: the changes to their drifts this step.
+    versions: u64,
+    /// Their kinetic energy at the fallback's time.
+    energy: f64,
+    /// The largest inverse mass among them.
+    lightest: f64,
+    /// Solved by the fallback: it spent its share of the budget, or something taken may
+    /// reach it.
+    crowd: bool,
+}
+
+impl Group {
+    /// A group of one: `segment`, of `inverse_mass`, at `version`.
+    fn of(segment: &Segment, inverse_mass: f64, version: u32) -> Self {
+        Group {
+            count: 1,
+            versions: u64::from(version),
+            energy: 0.5 * segment.velocity.length_squared() / inverse_mass,
+            lightest: inverse_mass,
+            crowd: false,
+        }
+    }
+
+    /// The fastest any of its bodies may go over the rest of the step while it meets
+    /// nothing outside the group: all its kinetic energy in its lightest body (no impact adds
+    /// energy, and a fixed sphere that does not move gives none). Infinite if that is not a
+    /// number.
+    fn speed(&self) -> f64 {
+        let speed = (2.0 * self.energy * self.lightest).sqrt();
+        if speed.is_nan() { f64::INFINITY } else { speed }
+    }
+
+    /// Adds `other`'s bodies to this group.
+    fn join(&mut self, other: &Group) {
+        self.count += other.count;
+        self.versions += other.versions;
+        self.energy += other.energy;
+        self.lightest = self.lightest.max(other.lightest);
+        self.crowd |= other.crowd;
     }
 }

@@ -289,6 +289,10 @@ pub struct World {
     dormant: Dormant,
     /// Which bodies the step takes (a buffer for the deepest overlap of those it leaves out).
     taken: Vec<bool>,
+    /// The bodies the last step took, if it left any out or was quiet (see
+    /// [`World::last_step_bodies`]).
+    last_step: Vec<BodyId>,
+    last_step_left_out: bool,
 }
 
 impl World {
@@ -486,6 +490,16 @@ impl World {
         &self.stats
     }
 
+    /// The bodies the last step took, when it left out the islands asleep beyond the reach
+    /// of everything that moves (see [`Settings::sleep`]): only these may have moved or
+    /// changed velocity in it, every other body stood still, asleep. Empty after a quiet step
+    /// ([`StepStats::quiet`]), in which nothing moved; `None` when the step took every body
+    /// (or before the first step). A game copying results out of the world (as the Bevy
+    /// plugin does) need look only at these.
+    pub fn last_step_bodies(&self) -> Option<&[BodyId]> {
+        self.last_step_left_out.then_some(&self.last_step[..])
+    }
+
     /// The collisions resolved in the last step, in the order they were resolved (time order).
     pub fn collisions(&self) -> &[Collision] {
         &self.collisions
@@ -670,6 +684,13 @@ impl World {
         self.time += dt;
         std::mem::swap(&mut self.collisions, &mut self.solver.collisions);
         self.profile = self.solver.profile;
+        self.last_step_left_out = left_out;
+        self.last_step.clear();
+        if left_out {
+            let bodies = &self.bodies;
+            self.last_step
+                .extend(self.dormant.in_step.iter().map(|&i| bodies[i as usize].id));
+        }
         if let Some(sleep) = sleep {
             let step = (self.settings.gravity, dt, self.time);
             // Only the step's bodies can have moved, woken or been calm.
@@ -696,6 +717,8 @@ impl World {
     fn quiet_step(&mut self, dt: f64) {
         self.steps += 1;
         self.time += dt;
+        self.last_step_left_out = true;
+        self.last_step.clear();
         self.collisions.clear();
         if self.solver.profiling {
             self.profile = StepProfile::default();

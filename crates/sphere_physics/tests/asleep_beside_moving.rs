@@ -7,7 +7,7 @@
 mod common;
 
 use proptest::prelude::*;
-use sphere_physics::{BodyId, Sleep, SphereDesc, StepStats, World, glam::DVec3};
+use sphere_physics::{BodyId, Settings, Sleep, SphereDesc, StepStats, World, glam::DVec3};
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -70,6 +70,82 @@ fn check_stats(world: &mut World, stats: &StepStats, label: &str) {
     assert_eq!(stats.max_overlap, world.max_overlap(), "{label}");
     let asleep = world.bodies().iter().filter(|b| b.is_asleep()).count();
     assert_eq!(stats.asleep as usize, asleep, "{label}");
+}
+
+/// Every body's id, position and velocity.
+fn states(world: &World) -> Vec<(BodyId, DVec3, DVec3)> {
+    world
+        .bodies()
+        .iter()
+        .map(|b| (b.id(), b.position(), b.velocity()))
+        .collect()
+}
+
+/// Every body the last step did not list (`World::last_step_bodies`) is as it was `before`
+/// it, to the bit.
+fn check_unlisted_still(world: &World, before: &[(BodyId, DVec3, DVec3)], label: &str) {
+    let Some(listed) = world.last_step_bodies() else {
+        return;
+    };
+    for &(id, position, velocity) in before {
+        if !listed.contains(&id) {
+            let body = world.body(id).unwrap();
+            assert_eq!(body.position(), position, "{label}: {id:?} moved unlisted");
+            assert_eq!(body.velocity(), velocity, "{label}: {id:?} sped unlisted");
+        }
+    }
+}
+
+/// The bodies a step lists (`World::last_step_bodies`) are the only ones that may have
+/// moved: a game copying results out of the world may look at those alone. A quiet step
+/// lists none; above a bed asleep, a ball asleep on its own small fixed stand 3 m up is
+/// struck off its stand by one dropped onto it a little aside, with another bouncing higher
+/// up all the while: the steps list the balls awake, the fixed spheres and the struck ball's
+/// island, and nothing else moves; a world without sleeping lists none (every body steps).
+#[test]
+fn only_the_bodies_a_step_lists_move() {
+    let mut world = bed_asleep(120, 1).expect("the bed falls asleep");
+    world
+        .add_sphere(SphereDesc::new(0.1).at(DVec3::new(0.0, 3.0, 0.0)).fixed())
+        .unwrap();
+    let resting = world
+        .add_sphere(SphereDesc::new(0.05).at(DVec3::new(0.0, 3.15, 0.0)))
+        .unwrap();
+    let mut steps = 0;
+    while world.stats().asleep < 121 {
+        world.step(DT).unwrap();
+        steps += 1;
+        assert!(steps < 600, "the ball on its stand falls asleep");
+    }
+    world.step(DT).unwrap();
+    assert!(world.stats().quiet);
+    assert_eq!(world.last_step_bodies(), Some(&[][..]));
+    add_bouncer(&mut world);
+    world
+        .add_sphere(SphereDesc::new(0.05).at(DVec3::new(0.03, 3.7, 0.0)))
+        .unwrap();
+    let mut struck_listed = false;
+    for step in 0..200 {
+        let before = states(&world);
+        let was_asleep = world.body(resting).unwrap().is_asleep();
+        world.step(DT).unwrap();
+        // (Once the struck ball falls onto the bed, a step takes every body.)
+        let Some(listed) = world.last_step_bodies() else {
+            continue;
+        };
+        struck_listed |= was_asleep && listed.contains(&resting);
+        check_unlisted_still(&world, &before, &format!("step {step}"));
+    }
+    assert!(struck_listed, "the ball asleep was taken into a step");
+    let knocked = world.body(resting).unwrap().position();
+    assert!(
+        knocked.y < 3.0,
+        "the ball was knocked off its stand: {knocked}"
+    );
+    let mut awake = World::new(Settings::default());
+    add_bouncer(&mut awake);
+    awake.step(DT).unwrap();
+    assert_eq!(awake.last_step_bodies(), None);
 }
 
 #[test]
@@ -222,8 +298,10 @@ proptest! {
                     .unwrap();
             }
             for step in 0..120 {
+                let before = states(&world);
                 let stats = *world.step(DT).unwrap();
                 check_stats(&mut world, &stats, &format!("step {step}"));
+                check_unlisted_still(&world, &before, &format!("step {step}"));
                 for body in world.bodies().iter().filter(|b| !b.is_fixed()) {
                     prop_assert!(body.position().is_finite() && body.velocity().is_finite());
                     prop_assert!(

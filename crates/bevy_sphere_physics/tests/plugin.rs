@@ -1469,3 +1469,97 @@ fn regression_a_rejected_sphere_moved_by_its_transform_joins_while_others_sleep(
     assert!(app.world().get::<RejectedSphere>(hanging).is_none());
     assert_eq!(asleep(&app), 1);
 }
+
+/// Every sphere's position and velocity components are its body's, to the bit, its previous
+/// position is `before` (its position when the update began), and its `Transform` shows the
+/// previous position (each update takes one whole step: the interpolation's fraction is 0).
+fn check_written(app: &mut App, before: &[(Entity, DVec3)], label: &str) {
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    for &(entity, was) in before {
+        let id = physics.body(entity).expect("in the world");
+        let body = physics.world.body(id).unwrap();
+        let world = app.world();
+        assert_eq!(position(app, entity), body.position(), "{label}: {entity}");
+        assert_eq!(velocity(app, entity), body.velocity(), "{label}: {entity}");
+        let previous = world.get::<PreviousSpherePosition>(entity).unwrap().0;
+        assert_eq!(previous, was, "{label}: {entity}'s previous position");
+        let shown = world.get::<Transform>(entity).unwrap().translation;
+        assert_eq!(shown, previous.as_vec3(), "{label}: {entity} shown");
+    }
+}
+
+/// Every dynamic sphere's position now.
+fn positions(app: &mut App, spheres: &[Entity]) -> Vec<(Entity, DVec3)> {
+    spheres.iter().map(|&e| (e, position(app, e))).collect()
+}
+
+/// A step that leaves out the spheres asleep beyond the reach of what moves (a bed of 80,
+/// each asleep on the floor) lists the bodies it took (`World::last_step_bodies`), and
+/// `Writeback` looks only at those and at the spheres it moved the update before: every
+/// sphere's components must still be its body's, and every previous position the position
+/// before the step, as a sphere starts to slide, slides, is stopped, and as a sphere asleep
+/// is pushed by a game late in an update (kept for the next step) or moved by one.
+#[test]
+fn writeback_of_a_step_that_leaves_a_bed_out_keeps_every_sphere_right() {
+    let mut app = app(sleeping_under_gravity());
+    let (_, slider) = ball_on_a_floor(&mut app);
+    let mut spheres = vec![slider];
+    for i in 0..80 {
+        let at = DVec3::new(10.0 + 1.2 * f64::from(i % 10), 0.5, 1.2 * f64::from(i / 10));
+        spheres.push(ball(&mut app, at, DVec3::ZERO));
+    }
+    run_steps(&mut app, 120);
+    assert_eq!(asleep(&app), 81);
+    let step = |app: &mut App, label: &str| {
+        let before = positions(app, &spheres);
+        run_steps(app, 1);
+        check_written(app, &before, label);
+    };
+    // The slider is pushed: it slides alone, the bed left out.
+    app.world_mut().get_mut::<SphereVelocity>(slider).unwrap().0 = DVec3::X;
+    for k in 0..20 {
+        step(&mut app, &format!("sliding {k}"));
+        let physics = app.world().resource::<SpherePhysicsWorld>();
+        let listed = physics.world.last_step_bodies().expect("the bed left out");
+        assert!(listed.len() <= 2, "sliding {k}: {listed:?}");
+    }
+    // Stopped by the game: it stands, its previous position catching up.
+    app.world_mut().get_mut::<SphereVelocity>(slider).unwrap().0 = DVec3::ZERO;
+    for k in 0..3 {
+        step(&mut app, &format!("stopped {k}"));
+    }
+    // A sphere asleep pushed late in an update (after `Prepare`): kept, then applied.
+    let pushed = spheres[40];
+    app.insert_resource(LateWrites {
+        pushed,
+        moved: pushed,
+        target: position(&app, pushed),
+        done: false,
+    })
+    .add_systems(
+        FixedUpdate,
+        (|mut late: ResMut<LateWrites>, mut velocities: Query<&mut SphereVelocity>| {
+            if !late.done {
+                late.done = true;
+                velocities.get_mut(late.pushed).unwrap().0 = DVec3::Z;
+            }
+        })
+        .after(SpherePhysicsSystems::Prepare)
+        .before(SpherePhysicsSystems::Writeback),
+    );
+    run_steps(&mut app, 1);
+    assert_eq!(velocity(&app, pushed), DVec3::Z, "kept for the next step");
+    let was = position(&app, pushed);
+    for k in 0..5 {
+        step(&mut app, &format!("pushed {k}"));
+    }
+    assert!(position(&app, pushed).z > was.z + 0.05, "it slid");
+    // A sphere asleep moved by the game.
+    let moved = spheres[70];
+    let target = position(&app, moved) + DVec3::new(0.0, 0.0, -0.1);
+    app.world_mut().get_mut::<SpherePosition>(moved).unwrap().0 = target;
+    for k in 0..5 {
+        step(&mut app, &format!("moved {k}"));
+    }
+    assert!((position(&app, moved) - target).length() < 1e-3);
+}

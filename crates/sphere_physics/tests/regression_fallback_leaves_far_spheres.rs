@@ -8,6 +8,7 @@
 
 mod common;
 
+use proptest::prelude::*;
 use sphere_physics::{BodyId, Settings, SphereDesc, World, glam::DVec3};
 
 const DT: f64 = 1.0 / 60.0;
@@ -163,4 +164,78 @@ fn a_blow_passed_down_a_row_into_the_crowd_is_not_left_unsolved() {
     assert!(stats.fell_back, "{stats:?}");
     let deepest = common::deepest_overlap(&world);
     assert!(deepest < 1e-3, "{deepest} deep, {stats:?}");
+}
+
+/// A ball thrown about the crowd: where (a direction and a distance from the crowd's centre),
+/// its velocity, radius, log10 of its density, and restitution.
+type Thrown = ((f64, f64, f64), f64, (f64, f64, f64), f64, f64, f64);
+
+proptest! {
+    #![proptest_config(common::proptest_config(8, common::SEED))]
+
+    /// Balls of any size, density and restitution thrown about a crowd crushed together with
+    /// a budget of 1 to 3 collisions a sphere, near enough to strike it or one another within
+    /// the steps or far from everything: whichever groups the fallbacks take or leave out,
+    /// every step keeps the momentum, gains no energy, ends with no pair deeper than the
+    /// solve allows (and reports the deepest), and repeats bit for bit.
+    #[test]
+    fn balls_thrown_about_a_crowd_that_falls_back(
+        budget in 1u32..4,
+        thrown in proptest::collection::vec(
+            ((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 0.6f64..3.0,
+             (-20.0f64..20.0, -20.0f64..20.0, -20.0f64..20.0), 0.02f64..0.12, -1.0f64..1.0,
+             0.0f64..1.0),
+            1..8,
+        ),
+    ) {
+        let run = || -> Result<String, TestCaseError> {
+            let mut world = common::crushed_crowd(budget);
+            let thrown: &[Thrown] = &thrown;
+            for &((x, y, z), distance, (vx, vy, vz), radius, density, restitution) in thrown {
+                let at = DVec3::new(x, y, z).normalize_or(DVec3::X) * distance;
+                // A ball that would overlap another is left out (overlaps at the start are
+                // not what this is about).
+                let clear = world
+                    .bodies()
+                    .iter()
+                    .all(|b| (b.position() - at).length() > b.radius() + radius);
+                if clear {
+                    world
+                        .add_sphere(
+                            SphereDesc::new(radius)
+                                .at(at)
+                                .moving(DVec3::new(vx, vy, vz))
+                                .with_density(10f64.powf(density))
+                                .with_restitution(restitution),
+                        )
+                        .unwrap();
+                }
+            }
+            let mut fell_back = 0;
+            for step in 0..3 {
+                let (momentum, energy) = (world.momentum(), world.kinetic_energy());
+                let scale: f64 = world.bodies().iter().map(|b| b.momentum().length()).sum();
+                let stats = *world.step(DT).unwrap();
+                fell_back += u32::from(stats.fell_back);
+                prop_assert!(
+                    (world.momentum() - momentum).length() <= 1e-12 * scale,
+                    "step {}: momentum {} -> {}", step, momentum, world.momentum()
+                );
+                prop_assert!(
+                    world.kinetic_energy() <= energy * (1.0 + 1e-12),
+                    "step {}: energy {} -> {}", step, energy, world.kinetic_energy()
+                );
+                let deepest = common::deepest_overlap(&world);
+                prop_assert!(deepest < 1e-3, "step {}: {} deep, {:?}", step, deepest, stats);
+                prop_assert!(
+                    stats.max_overlap >= deepest - 1e-12,
+                    "step {}: {} reported, {} found", step, stats.max_overlap, deepest
+                );
+            }
+            prop_assert!(fell_back > 0);
+            Ok(format!("{:?}", world.bodies()))
+        };
+        let first = run()?;
+        prop_assert_eq!(first, run()?);
+    }
 }

@@ -1208,7 +1208,9 @@ impl Solver {
                             (share..share.saturating_add(SQUEEZES)).contains(&versions[k as usize])
                         })
                     });
-                let squeeze = squeezable && events < budget && !self.strings;
+                // Not after a fallback: a squeeze ends every push, the fallback's on the
+                // bodies it took among them, and its cluster may reach those bodies.
+                let squeeze = squeezable && events < budget && !self.strings && fallbacks == 0;
                 if events >= budget || (over_share && !squeeze) {
                     stats.collisions_deferred = stats
                         .collisions_deferred

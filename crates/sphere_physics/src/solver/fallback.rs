@@ -50,16 +50,28 @@ impl Solver {
         }
         let rest = ctx.dt - t;
         // The pushes end (see `Solver::end_pushes`): the solve below answers the velocities
-        // without them.
-        self.end_pushes(t, ctx);
+        // without them. After an earlier fallback of the step, the pushes left are its deep
+        // pushes, on bodies it took: they stay, to be taken off at the step's end, unless
+        // this is the `last` fallback, which takes those bodies again. The bodies
+        // `end_pushes` touches are tested again at the end if left out; those touched before
+        // were tested already.
+        self.clear_touched();
+        if self.fallen.is_empty() || last {
+            self.end_pushes(t, ctx);
+        }
         self.fallback_requery.extend_from_slice(&self.touched);
         for segment in &mut self.segments {
             segment.advance_to(t);
         }
+        // Every dynamic body not on a string; unless `last`, not those an earlier fallback
+        // of the step took either (their drifts are final: they join no group, as fixed
+        // bodies do not, and a solve takes them again only if it presses them).
         let mut bodies = std::mem::take(&mut self.local_bodies);
         bodies.clear();
         bodies.extend((0..self.segments.len() as u32).filter(|&k| {
-            !self.segments[k as usize].is_fixed() && self.string_of(k as usize).is_none()
+            !self.segments[k as usize].is_fixed()
+                && self.string_of(k as usize).is_none()
+                && (last || !bit(&self.fallen_bits, k as usize))
         }));
         let mut candidates = std::mem::take(&mut self.candidates);
         let mut left = if last {
@@ -264,7 +276,7 @@ impl Solver {
             self.crowd_candidates.extend_from_slice(candidates);
             for &m in candidates.iter() {
                 let m = m as usize;
-                if m == k || self.segments[m].is_fixed() {
+                if m == k || self.segments[m].is_fixed() || bit(&self.fallen_bits, m) {
                     continue;
                 }
                 if union_root(&mut parent, k) != union_root(&mut parent, m)
@@ -284,9 +296,11 @@ impl Solver {
             let root = union_root(&mut parent, k);
             let segment = &self.segments[k];
             self.crowd_radius = self.crowd_radius.max(segment.radius());
+            let extra = self.extra(k);
             groups[root].join(&Group::of(
                 segment,
-                self.extra(k).inverse_mass,
+                extra.inverse_mass,
+                extra.acceleration.length(),
                 self.versions[k],
             ));
         }
@@ -296,7 +310,8 @@ impl Solver {
             // A group whose reach is not finite (a speed or a mass out of range) is taken:
             // the queries below need finite boxes.
             if group.count > 0
-                && (group.versions >= share * u64::from(group.count) || !group.speed().is_finite())
+                && (group.versions >= share * u64::from(group.count)
+                    || !group.speed(ctx.dt).is_finite())
             {
                 group.crowd = true;
             }
@@ -315,7 +330,7 @@ impl Solver {
                 if groups[root].crowd {
                     continue;
                 }
-                let speed = groups[root].speed();
+                let speed = groups[root].speed(ctx.dt);
                 self.query_reach(k, 2.0 * speed * rest, candidates, ctx);
                 for &m in candidates.iter() {
                     let m = m as usize;
@@ -326,17 +341,21 @@ impl Solver {
                         groups[root].crowd |= sm.velocity != DVec3::ZERO;
                         continue;
                     }
+                    if bit(&self.fallen_bits, m) {
+                        // Taken by an earlier fallback: checked after the solve.
+                        continue;
+                    }
                     let other = union_root(&mut parent, m);
                     if other == root || groups[other].crowd {
                         continue;
                     }
-                    let reach = (groups[root].speed() + groups[other].speed()) * rest;
+                    let reach = (groups[root].speed(ctx.dt) + groups[other].speed(ctx.dt)) * rest;
                     if self.within_reach(k, m, reach, ctx) {
                         union_join(&mut parent, root, other);
                         let (low, high) = (root.min(other), root.max(other));
                         let merged = groups[high];
                         groups[low].join(&merged);
-                        groups[low].crowd |= !groups[low].speed().is_finite();
+                        groups[low].crowd |= !groups[low].speed(ctx.dt).is_finite();
                         joined = true;
                     }
                 }
@@ -361,7 +380,7 @@ impl Solver {
                     }
                 }
             }
-            taken_all = self.crowd_left.len() == bodies.len();
+            taken_all = self.crowd_left.is_empty() || self.crowd_left.len() == bodies.len();
             bodies.retain(|&k| groups[parent[k as usize] as usize].crowd);
         }
         self.crowd_parent = parent;
@@ -398,7 +417,7 @@ impl Solver {
             if groups[root].crowd {
                 continue;
             }
-            let reach = groups[root].speed() * rest;
+            let reach = groups[root].speed(ctx.dt) * rest;
             self.query_reach(k, reach, candidates, ctx);
             let at = self.segments[k].position;
             for &m in candidates.iter() {
@@ -442,8 +461,12 @@ impl Solver {
             }
             true
         });
+        let none_left = kept.is_empty();
         self.crowd_left = kept;
         self.crowd_groups = groups;
+        if none_left {
+            return 0;
+        }
         u32::try_from(left).unwrap_or(u32::MAX).max(1)
     }
 
@@ -719,29 +742,36 @@ pub(super) struct Group {
     energy: f64,
     /// The largest inverse mass among them.
     lightest: f64,
+    /// The largest acceleration among them (an impact between bodies accelerated unlike
+    /// answers the drifts' lag behind the kicks, see `Solver::resolve_at`: up to that
+    /// acceleration times the step in speed).
+    accelerated: f64,
     /// Solved by the fallback: it spent its share of the budget, or something taken may
     /// reach it.
     crowd: bool,
 }
 
 impl Group {
-    /// A group of one: `segment`, of `inverse_mass`, at `version`.
-    fn of(segment: &Segment, inverse_mass: f64, version: u32) -> Self {
+    /// A group of one: `segment`, of `inverse_mass` and `acceleration`, at `version`.
+    fn of(segment: &Segment, inverse_mass: f64, acceleration: f64, version: u32) -> Self {
         Group {
             count: 1,
             versions: u64::from(version),
             energy: 0.5 * segment.velocity.length_squared() / inverse_mass,
             lightest: inverse_mass,
+            accelerated: acceleration,
             crowd: false,
         }
     }
 
-    /// The fastest any of its bodies may go over the rest of the step while it meets
+    /// The fastest any of its bodies may go over the rest of a step of `dt` while it meets
     /// nothing outside the group: all its kinetic energy in its lightest body (no impact adds
-    /// energy, and a fixed sphere that does not move gives none). Infinite if that is not a
-    /// number.
-    fn speed(&self) -> f64 {
-        let speed = (2.0 * self.energy * self.lightest).sqrt();
+    /// energy, and a fixed sphere that does not move gives none), and what impacts between
+    /// bodies accelerated unlike may add to answer the drifts' lag (at most twice its largest
+    /// acceleration times the step, for each of a few impacts: four times, allowed). Infinite
+    /// if that is not a number.
+    fn speed(&self, dt: f64) -> f64 {
+        let speed = (2.0 * self.energy * self.lightest).sqrt() + 4.0 * self.accelerated * dt;
         if speed.is_nan() { f64::INFINITY } else { speed }
     }
 
@@ -751,6 +781,7 @@ impl Group {
         self.versions += other.versions;
         self.energy += other.energy;
         self.lightest = self.lightest.max(other.lightest);
+        self.accelerated = self.accelerated.max(other.accelerated);
         self.crowd |= other.crowd;
     }
 }

@@ -289,10 +289,38 @@ fn check(app: &mut App) -> Vec<(Entity, DVec3, DVec3)> {
     state
 }
 
+/// 70 balls resting 30 cm apart on a fixed sphere of radius 1 km whose top is 100 km above
+/// the pit (beyond its walls): asleep soon, so that a step leaves them out (64 asleep or
+/// more), and `Writeback` looks only at what the step took.
+fn spawn_bed(app: &mut App) {
+    let top = 1.0e5;
+    app.world_mut().spawn((
+        SphereBody::new(1.0e3),
+        SpherePosition(DVec3::new(0.0, top - 1.0e3, 0.0)),
+        FixedSphere,
+    ));
+    for i in 0..70 {
+        let (x, z) = (
+            f64::from(i % 10) * 0.3 - 1.35,
+            f64::from(i / 10) * 0.3 - 0.9,
+        );
+        // On the sphere's surface, not into it.
+        let y = top - 1.0e3 + ((1.0e3f64 + 0.05).powi(2) - (x * x + z * z)).sqrt();
+        app.world_mut().spawn((
+            SphereBody::new(0.05),
+            SpherePosition(DVec3::new(x, y + 1e-9, z)),
+        ));
+    }
+}
+
 fn play(seed: u64, frames: u32) -> Vec<Vec<(Entity, DVec3, DVec3)>> {
     let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
-    let mut app = app(rng.chance(0.6));
+    let sleep = rng.chance(0.6);
+    let mut app = app(sleep);
     spawn_scene(&mut app, &mut rng);
+    if sleep {
+        spawn_bed(&mut app);
+    }
     let mut states = Vec::new();
     for _ in 0..frames {
         // A change every third frame or so, to let the spheres settle (and fall asleep).

@@ -265,13 +265,7 @@ impl Solver {
         self.crowd_found = true;
         for &k in bodies.iter() {
             let k = k as usize;
-            candidates.clear();
-            let swept = self.boxes[k];
-            let grow = DVec3::splat(FALLBACK_MARGIN * 2.0 * self.segments[k].radius());
-            self.boxes[k].lo -= grow;
-            self.boxes[k].hi += grow;
-            self.broad.collect_overlapping(k, &self.boxes, candidates);
-            self.boxes[k] = swept;
+            self.collect_within(k, self.grown_box(k, FALLBACK_MARGIN), candidates);
             self.crowd_ranges[k] = (self.crowd_candidates.len() as u32, candidates.len() as u32);
             self.crowd_candidates.extend_from_slice(candidates);
             for &m in candidates.iter() {
@@ -480,14 +474,32 @@ impl Solver {
         candidates: &mut Vec<u32>,
         ctx: &StepContext<'_>,
     ) {
-        candidates.clear();
         let segment = &self.segments[k];
         let r = segment.radius();
         let band = 2e-6 * r + ctx.settings.tolerance.epsilon() * (1.0 + r + self.crowd_radius);
         let grow = DVec3::splat(r + CROWD_REACH_FACTOR * reach + band);
-        let swept = self.boxes[k];
-        self.boxes[k].lo = segment.position - grow;
-        self.boxes[k].hi = segment.position + grow;
+        let query = Aabb {
+            lo: segment.position - grow,
+            hi: segment.position + grow,
+        };
+        self.collect_within(k, query, candidates);
+    }
+
+    /// Segment `k`'s box grown on every side by `margin` of its diameter.
+    fn grown_box(&self, k: usize, margin: f64) -> Aabb {
+        let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
+        let b = self.boxes[k];
+        Aabb {
+            lo: b.lo - grow,
+            hi: b.hi + grow,
+        }
+    }
+
+    /// Sets `candidates` to the bodies whose boxes overlap `query`, asked for as segment `k`
+    /// (whose own box is put back after).
+    fn collect_within(&mut self, k: usize, query: Aabb, candidates: &mut Vec<u32>) {
+        candidates.clear();
+        let swept = std::mem::replace(&mut self.boxes[k], query);
         self.broad.collect_overlapping(k, &self.boxes, candidates);
         self.boxes[k] = swept;
     }
@@ -587,15 +599,10 @@ impl Solver {
                     let (start, len) = self.crowd_ranges[k];
                     let (start, len) = (start as usize, len as usize);
                     candidates.extend_from_slice(&self.crowd_candidates[start..start + len]);
+                } else if margin > 0.0 {
+                    self.collect_within(k, self.grown_box(k, margin), candidates);
                 } else {
-                    let swept = self.boxes[k];
-                    if margin > 0.0 {
-                        let grow = DVec3::splat(margin * 2.0 * self.segments[k].radius());
-                        self.boxes[k].lo -= grow;
-                        self.boxes[k].hi += grow;
-                    }
                     self.broad.collect_overlapping(k, &self.boxes, candidates);
-                    self.boxes[k] = swept;
                 }
                 for &m in candidates.iter() {
                     let m = m as usize;

@@ -273,6 +273,8 @@ pub(crate) struct Solver {
     /// dynamic radius.
     crowd_left: Vec<u32>,
     crowd_radius: f64,
+    /// Scratch for `Solver::take_reached`: the bodies of the groups a crowd's drifts reach.
+    crowd_reached: Vec<u32>,
     /// Scratch for `Solver::choose_crowd`: each body's candidates as it found them (its range
     /// of `crowd_candidates` by segment), and whether they still stand for the first round of
     /// the fallback's first solve.

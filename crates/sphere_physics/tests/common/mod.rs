@@ -357,3 +357,57 @@ pub fn centre_of_mass(world: &World) -> DVec3 {
     }
     sum / mass
 }
+
+/// The radius of the spheres of [`heavy_ball_into_a_line`].
+pub const HEAVY_LINE_RADIUS: f64 = 0.5;
+
+/// A heavy sphere (radius 0.5, density 1e6) at 800 m/s, 11 cm from the first of a line of 200
+/// light ones at rest (radius 0.5, 11 cm apart: farther than the fallback's first round
+/// reaches, so each later link is brought in by the round before), and a sphere between two
+/// fixed ones, half a micrometre from each, that spends a collision budget of one a body in
+/// the step's first instants; with no gravity.
+pub fn heavy_ball_into_a_line() -> World {
+    let mut world = World::new(Settings {
+        max_collisions_per_body: 1,
+        ..Settings::default()
+    });
+    // The budget's spender: a sphere between two fixed ones, half a micrometre from each,
+    // bouncing between them a hundred thousand times a second.
+    for x in [0.0, 4.0 * HEAVY_LINE_RADIUS + 1e-6] {
+        world
+            .add_sphere(
+                SphereDesc::new(HEAVY_LINE_RADIUS)
+                    .at(DVec3::new(x, 10.0, 0.0))
+                    .fixed(),
+            )
+            .unwrap();
+    }
+    world
+        .add_sphere(
+            SphereDesc::new(HEAVY_LINE_RADIUS)
+                .at(DVec3::new(2.0 * HEAVY_LINE_RADIUS + 5e-7, 10.0, 0.0))
+                .moving(DVec3::X * 10.0),
+        )
+        .unwrap();
+    // The heavy sphere and the line, 11 cm apart (farther than the fallback's first round
+    // reaches: each later link is brought in by the round before).
+    let gap = 0.11;
+    world
+        .add_sphere(
+            SphereDesc::new(HEAVY_LINE_RADIUS)
+                .at(DVec3::new(-(2.0 * HEAVY_LINE_RADIUS + gap), 0.0, 0.0))
+                .moving(DVec3::X * 800.0)
+                .with_density(1e6),
+        )
+        .unwrap();
+    for i in 0..200 {
+        world
+            .add_sphere(SphereDesc::new(HEAVY_LINE_RADIUS).at(DVec3::new(
+                f64::from(i) * (2.0 * HEAVY_LINE_RADIUS + gap),
+                0.0,
+                0.0,
+            )))
+            .unwrap();
+    }
+    world
+}

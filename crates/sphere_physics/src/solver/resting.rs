@@ -1161,8 +1161,14 @@ impl Solver {
     /// push would have spent of its body's budget over the rest of the step is given back
     /// (see [`Solver::push_left`]).
     pub(super) fn end_pushes(&mut self, t: f64, ctx: &StepContext<'_>) {
+        self.end_pushes_from(0, t, ctx);
+    }
+
+    /// As [`Solver::end_pushes`], for the pushes from the `from`th on (those given since there
+    /// were `from`); the earlier ones stay.
+    pub(super) fn end_pushes_from(&mut self, from: usize, t: f64, ctx: &StepContext<'_>) {
         let pushes = std::mem::take(&mut self.pushes);
-        for &(k, push) in &pushes {
+        for &(k, push) in &pushes[from.min(pushes.len())..] {
             let k = k as usize;
             self.pushed_bits[k / 64] &= !(1 << (k % 64));
             // What the push would have spent over the rest of the step is left to spend.
@@ -1180,7 +1186,11 @@ impl Solver {
             self.queue_bend_again(k, t, ctx.dt);
         }
         self.pushes = pushes;
-        self.pushes.clear();
+        self.pushes.truncate(from);
+        // A body may have a push left among the earlier ones.
+        for &(k, _) in &self.pushes {
+            self.pushed_bits[k as usize / 64] |= 1 << (k % 64);
+        }
     }
 
     /// After the resting solve: keeps its impulses for the next step's warm start (each at

@@ -216,9 +216,9 @@ fn touching_cradle_sends_exactly_one_ball_out() {
 
 #[test]
 fn the_ball_pit_falls_asleep_and_says_so() {
-    // The scene turns sleeping on; its bed is asleep at 6.9 s.
+    // The scene turns sleeping on; its bed is asleep at 3.2 s.
     let scene = assets().join("ball_pit.ron");
-    let r = report(&["run", scene.to_str().unwrap(), "--duration", "8"]);
+    let r = report(&["run", scene.to_str().unwrap(), "--duration", "5"]);
     let bodies = r["bodies"].as_array().unwrap();
     let asleep = |b: &&Value| b["asleep"] == true;
     let dynamic = |b: &&Value| b["fixed"] == false;

@@ -121,7 +121,17 @@ impl Solver {
             // velocity, then the push taken off at the step's end, a body took the push's
             // answer as its own (an overlapping crowd's energy went from 1.3 kJ to 6.1 kJ in
             // a step).
-            self.end_pushes_from(pushes_from, t, ctx);
+            // (Given at `t`, the pushes have spent nothing yet. A body left out can have one,
+            // if a push's sweeps undid the impulse its contact took: its pairs are tested
+            // again at the end if this fallback leaves it out still.)
+            self.clear_touched();
+            self.end_pushes_from(pushes_from, t, t, ctx);
+            for i in 0..self.touched.len() {
+                let k = self.touched[i];
+                if !self.is_fallen(k as usize) {
+                    self.fallback_requery.push(k);
+                }
+            }
             self.clear_touched();
             bodies.extend_from_slice(&self.fallen[taken_from..]);
         }
@@ -251,8 +261,9 @@ impl Solver {
     }
 
     /// Keeps in `bodies` (every dynamic body not on a string) only the crowds that spent their
-    /// share of the step's collision budget, and returns what is left of the others' shares
-    /// (0, with every body kept, if it takes them all).
+    /// share of the step's collision budget (and the groups taken for reaching too far, see
+    /// [`Group::too_far_reaching`]), and returns what is left of the others' shares (0, with
+    /// every body kept, if it takes them all).
     ///
     /// The groups are the dynamic bodies joined by pairs that may come within the band over
     /// the `rest` of the step (as the fallback's first round takes them: fixed bodies join
@@ -808,7 +819,8 @@ const CROWD_CAP_BODIES: u32 = 8;
 const CROWD_PASSES: u32 = 4;
 
 /// The most solves of [`Solver::fall_back`] after its first for the groups its drifts may
-/// reach; past them it takes every body still left out.
+/// reach; past them it takes every body still left out. (Also the most passes of
+/// [`Solver::take_reached`], before the first.)
 const FALLBACK_FOLLOW_UPS: u32 = 3;
 
 /// A group of dynamic bodies of [`Solver::choose_crowd`], as kept at its root.
@@ -826,8 +838,8 @@ pub(super) struct Group {
     /// answers the drifts' lag behind the kicks, see `Solver::resolve_at`: up to that
     /// acceleration times the step in speed).
     accelerated: f64,
-    /// Solved by the fallback: it spent its share of the budget, or something taken may
-    /// reach it.
+    /// Solved by the fallback: it spent its share of the budget, something taken may reach
+    /// it, or it reaches too far to look around (see [`Group::too_far_reaching`]).
     crowd: bool,
 }
 

@@ -1161,19 +1161,28 @@ impl Solver {
     /// push would have spent of its body's budget over the rest of the step is given back
     /// (see [`Solver::push_left`]).
     pub(super) fn end_pushes(&mut self, t: f64, ctx: &StepContext<'_>) {
-        self.end_pushes_from(0, t, ctx);
+        self.end_pushes_from(0, 0.0, t, ctx);
     }
 
     /// As [`Solver::end_pushes`], for the pushes from the `from`th on (those given since there
-    /// were `from`); the earlier ones stay.
-    pub(super) fn end_pushes_from(&mut self, from: usize, t: f64, ctx: &StepContext<'_>) {
+    /// were `from`, at time `since` of the step); the earlier ones stay. What each would have
+    /// spent from `t` on, of what it spent from `since`, is given back (all of it if `t` is
+    /// `since`).
+    pub(super) fn end_pushes_from(
+        &mut self,
+        from: usize,
+        since: f64,
+        t: f64,
+        ctx: &StepContext<'_>,
+    ) {
         let pushes = std::mem::take(&mut self.pushes);
+        let left = ctx.dt - since;
         for &(k, push) in &pushes[from.min(pushes.len())..] {
             let k = k as usize;
             self.pushed_bits[k / 64] &= !(1 << (k % 64));
             // What the push would have spent over the rest of the step is left to spend.
-            if bit(&self.spent_bits, k) && ctx.dt > 0.0 {
-                let unused = push.length() * ((ctx.dt - t) / ctx.dt).clamp(0.0, 1.0);
+            if bit(&self.spent_bits, k) && left > 0.0 {
+                let unused = push.length() * ((ctx.dt - t) / left).clamp(0.0, 1.0);
                 self.spent[k] = (self.spent[k] - unused).max(0.0);
             }
             let segment = &mut self.segments[k];

@@ -29,10 +29,9 @@ impl Solver {
     /// [`Solver::take_reached`]). Those the solve's new drifts may reach are solved in turn
     /// (see [`Solver::reached_groups`]), each such follow-up together with every body the
     /// earlier solves took, up to [`FALLBACK_FOLLOW_UPS`] times, after which every body not
-    /// yet taken is. The bodies taken, and those a solve changes, are marked
-    /// fallen: their later impacts are deferred. The others go on meeting exactly in the event
-    /// loop, their pairs changed at `t` (dirty ones, those whose push ended) tested again
-    /// here. Returns how many more collisions the others may take: what is left of their
+    /// yet taken is. The bodies taken, and those a solve changes, are marked fallen: their
+    /// later impacts are deferred. The others go on meeting exactly in the event loop, their
+    /// pairs changed at `t` (dirty ones, those whose push ended) tested again here. Returns how many more collisions the others may take: what is left of their
     /// shares of the budget (0 if every body was taken).
     pub(super) fn fall_back(
         &mut self,
@@ -81,8 +80,8 @@ impl Solver {
         } else {
             self.choose_crowd(&mut bodies, &mut candidates, rest, ctx)
         };
-        // The bodies this fallback takes are marked fallen from here on, and the pushes its
-        // solves give are pushed from here on.
+        // The bodies this fallback takes are listed as fallen from here on, and the pushes its
+        // solves give are listed from here on.
         let (taken_from, pushes_from) = (self.fallen.len(), self.pushes.len());
         if left > 0 {
             left = self.take_reached(&mut bodies, &mut candidates, rest, ctx);
@@ -120,10 +119,9 @@ impl Solver {
             // `Solver::end_pushes`), and gives its own: solved again with its push in its
             // velocity, then the push taken off at the step's end, a body took the push's
             // answer as its own (an overlapping crowd's energy went from 1.3 kJ to 6.1 kJ in
-            // a step).
-            // (Given at `t`, the pushes have spent nothing yet. A body left out can have one,
-            // if a push's sweeps undid the impulse its contact took: its pairs are tested
-            // again at the end if this fallback leaves it out still.)
+            // a step). Given at `t`, the pushes have spent nothing yet. A body left out can
+            // hold one, if a push's sweeps undid the impulse its contact took: its pairs are
+            // tested again at the end if this fallback still leaves it out.
             self.clear_touched();
             self.end_pushes_from(pushes_from, t, t, ctx);
             for i in 0..self.touched.len() {

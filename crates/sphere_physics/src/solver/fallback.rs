@@ -31,8 +31,9 @@ impl Solver {
     /// earlier solves took, up to [`FALLBACK_FOLLOW_UPS`] times, after which every body not
     /// yet taken is. The bodies taken, and those a solve changes, are marked fallen: their
     /// later impacts are deferred. The others go on meeting exactly in the event loop, their
-    /// pairs changed at `t` (dirty ones, those whose push ended) tested again here. Returns how many more collisions the others may take: what is left of their
-    /// shares of the budget (0 if every body was taken).
+    /// pairs changed at `t` (dirty ones, those whose push ended) tested again here. Returns
+    /// how many more collisions the others may take: what is left of their shares of the
+    /// budget (0 if every body was taken).
     pub(super) fn fall_back(
         &mut self,
         t: f64,
@@ -124,12 +125,7 @@ impl Solver {
             // tested again at the end if this fallback still leaves it out.
             self.clear_touched();
             self.end_pushes_from(pushes_from, t, t, ctx);
-            for i in 0..self.touched.len() {
-                let k = self.touched[i];
-                if !self.is_fallen(k as usize) {
-                    self.fallback_requery.push(k);
-                }
-            }
+            self.fallback_requery.extend_from_slice(&self.touched);
             self.clear_touched();
             bodies.extend_from_slice(&self.fallen[taken_from..]);
         }

@@ -68,16 +68,18 @@ pub struct Settings {
     /// touching (up to 1024 more sweeps: a long line of spheres struck hard passes its impulses
     /// on one contact a sweep) ([`StepStats::fell_back`]; bodies on strings are left out of
     /// that solve, which holds no string: their pairs are deferred to the next step instead).
-    /// No body takes more than 64 times this in one step (so that a sphere caught between fixed
-    /// ones, which bounces between them without end, cannot spend the whole budget): a body
-    /// past that share is solved at once with every contact touching it through dynamic bodies,
-    /// restitution 0 (a light sphere squeezed between heavy ones bounces faster and faster,
-    /// without end before the squeeze does; this is how those bounces end), a few times in a
-    /// step, and its collisions after that are deferred to the next step and counted in
+    /// No body takes more than 256 times this in one step, 64 times in a world with strings (so
+    /// that a sphere caught between fixed ones, which bounces between them without end, cannot
+    /// spend the whole budget of a large world): a body past that share is solved at
+    /// once with every contact touching it through dynamic bodies, restitution 0 (a light
+    /// sphere squeezed between heavy ones bounces faster and faster, without end before the
+    /// squeeze does; this is how those bounces end), a few times in a step, and its collisions
+    /// after that are deferred to the next step and counted in
     /// [`StepStats::collisions_deferred`]. The shower and gas benchmarks take under 0.3
-    /// collisions per sphere per step, and a sphere at the bottom of the 100k shower's pile up
-    /// to 381. With substeps, each substep has this budget (and records its collisions): a
-    /// wedged sphere may take `substeps` times as many in one [`World::step`]. Default 16 (64
+    /// collisions per sphere per step in their first second, and a sphere sliding down the
+    /// dome in the 100k shower's film at its climax up to 2228. With substeps, each substep
+    /// has this budget (and records its collisions): a wedged sphere may take `substeps`
+    /// times as many in one [`World::step`]. Default 16 (64
     /// until 2026-12-01, when the budget's end deferred the rest: a landing crowd then sank 4.5
     /// cm into itself), at most [`MAX_COLLISIONS_PER_BODY`]. Lowering it makes a landing
     /// crowd's steps cheaper (a pit of 1000 dropped together: 6.7 µs a sphere a step at 4
@@ -132,7 +134,7 @@ impl Default for Settings {
 pub const MAX_SUBSTEPS: u32 = 65_536;
 
 /// The largest [`Settings::max_collisions_per_body`]: a sphere wedged between fixed ones then
-/// takes at most about four million collisions in a substep (each one recorded), not billions.
+/// takes at most about 17 million collisions in a substep (each one recorded), not billions.
 pub const MAX_COLLISIONS_PER_BODY: u32 = 65_536;
 
 /// The most bisection iterations: after 64 halvings an f64 interval cannot shrink further.

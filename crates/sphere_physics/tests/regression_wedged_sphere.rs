@@ -2,17 +2,18 @@
 //! too narrow for it) bounces between them at one instant without end. It used to spend the
 //! whole world's collision budget on that every step, so every other collision in the world
 //! was deferred: spheres elsewhere passed through each other. Found by review. Now one body
-//! takes at most 64 times `max_collisions_per_body` collisions in a step (16 times the old
-//! default of 64, as 64 times the default of 16: 1024). Since 2026-12-04 a body past that
-//! share is first solved at once with every contact touching it (restitution 0, a few times
-//! at most: see `regression_light_sphere_squeezed.rs`), and only then are its impacts
-//! deferred: the wedged ball stops between the fixed spheres.
+//! takes at most 256 times `max_collisions_per_body` collisions in a step (4096 at the default
+//! of 16; 64 times until 2026-12-06, as still in a world with strings). Since 2026-12-04 a
+//! body past that share is first solved at once with every contact touching it (restitution
+//! 0, a few times at most: see `regression_light_sphere_squeezed.rs`), and only then are its
+//! impacts deferred: the wedged ball stops between the fixed spheres. In a world whose budget
+//! is below one body's share the budget runs out first, and the fallback stops the ball.
 
 use sphere_physics::{BodyId, Settings, SphereDesc, World, glam::DVec3};
 
-/// Elsewhere in the world, 40 head-on pairs that meet within the first step.
-fn add_head_on_pairs(world: &mut World) -> Vec<(BodyId, BodyId)> {
-    (0..40)
+/// Elsewhere in the world, `count` head-on pairs that meet within the first step.
+fn add_head_on_pairs(world: &mut World, count: u32) -> Vec<(BodyId, BodyId)> {
+    (0..count)
         .map(|k| {
             let centre = DVec3::new(10.0 + 3.0 * k as f64, 0.0, 0.0);
             let [a, b] = [-1.0, 1.0].map(|side| {
@@ -34,8 +35,12 @@ fn assert_exchanged(world: &World, pairs: &[(BodyId, BodyId)]) {
     }
 }
 
-#[test]
-fn regression_a_wedged_sphere_does_not_stop_the_rest_of_the_world() {
+/// Enough pairs that the world's budget (16 collisions a dynamic body) exceeds one body's
+/// share (4096).
+const PAIRS: u32 = 140;
+
+/// A world with a ball of radius 0.5 wedged between fixed spheres at x = -1 and x = 1, moving.
+fn wedged_world() -> (World, BodyId) {
     let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
     // The wedge: fixed spheres at x = -1 and x = 1, a ball of radius 0.5 between them, moving.
     world
@@ -47,13 +52,33 @@ fn regression_a_wedged_sphere_does_not_stop_the_rest_of_the_world() {
     let wedged = world
         .add_sphere(SphereDesc::new(0.5).moving(DVec3::X))
         .unwrap();
-    let pairs = add_head_on_pairs(&mut world);
+    (world, wedged)
+}
+
+#[test]
+fn regression_a_wedged_sphere_does_not_stop_the_rest_of_the_world() {
+    let (mut world, wedged) = wedged_world();
+    let pairs = add_head_on_pairs(&mut world, PAIRS);
     let stats = *world.step(1.0 / 60.0).unwrap();
     assert_exchanged(&world, &pairs);
     // The wedged ball's bounces were cut off at its share, where it was squeezed to rest
     // between the two, and the step went on.
-    let share = 64 * world.settings().max_collisions_per_body;
-    assert!(stats.collisions >= share + 40, "{stats:?}");
+    let share = 256 * world.settings().max_collisions_per_body;
+    assert!(stats.collisions >= share + PAIRS, "{stats:?}");
+    assert!(!stats.fell_back, "{stats:?}");
+    let velocity = world.body(wedged).unwrap().velocity();
+    assert!(velocity.length() <= 1e-12, "{velocity}");
+}
+
+#[test]
+fn regression_a_wedged_sphere_does_not_stop_the_rest_of_a_small_world() {
+    let (mut world, wedged) = wedged_world();
+    let pairs = add_head_on_pairs(&mut world, 40);
+    let stats = *world.step(1.0 / 60.0).unwrap();
+    assert_exchanged(&world, &pairs);
+    // 81 dynamic bodies: the world's budget, 1296, ran out before the ball's share, and the
+    // fallback stopped the ball.
+    assert!(stats.fell_back, "{stats:?}");
     let velocity = world.body(wedged).unwrap().velocity();
     assert!(velocity.length() <= 1e-12, "{velocity}");
 }
@@ -77,7 +102,7 @@ fn regression_a_sphere_pressed_by_a_kinematic_one_does_not_stop_the_rest_of_the_
                 .moving(DVec3::X),
         )
         .unwrap();
-    let pairs = add_head_on_pairs(&mut world);
+    let pairs = add_head_on_pairs(&mut world, PAIRS);
     let stats = *world.step(1.0 / 60.0).unwrap();
     assert_exchanged(&world, &pairs);
     assert!(stats.collisions_deferred > 0, "{stats:?}");

@@ -60,8 +60,8 @@ impl Solver {
     /// [`Solver::joined`], and touches their bodies. A light sphere squeezed between heavier
     /// ones closing on it (or against a fixed one) bounces between them faster and faster:
     /// with restitutions below 1 the bounces have no end before the squeeze does (an
-    /// inelastic collapse). It took its whole share, 1024 collisions, and was then deferred
-    /// and squeezed into them (2.8 of its radius in one of the fuzz's scenes). The solve
+    /// inelastic collapse). It took its whole share (then 1024 collisions), was then deferred
+    /// and was squeezed into them (2.8 of its radius in one of the fuzz's scenes). The solve
     /// stops every contact of the cluster closing at once, as the bounces would in the limit
     /// (no push against an overlap: it only stops the contacts closing), keeping momentum.
     pub(super) fn squeeze(

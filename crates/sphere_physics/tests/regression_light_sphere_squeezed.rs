@@ -144,8 +144,10 @@ fn regression_columns_of_mixed_masses_stand() {
 }
 
 /// Two balls of 100 kg closing at 1 m/s each on a pebble of 3 g between them, no gravity,
-/// restitution 0.9, in a world of three (the budget runs out: the fallback) and in one with
-/// 80 more spheres at rest far off (the pebble's share runs out first). Before: 1.2 cm deep
+/// restitution 0.9, in a world of three and in one with 80 more spheres at rest far off (the
+/// budget runs out: the fallback), and in one with 300 more (the pebble's share, 4096
+/// collisions since 2026-12-06, runs out first: the squeeze; until then it did with 80, whose
+/// budget is 1328, at a share of 1024). Before: 1.2 cm deep
 /// after the first squeeze, and the pebble pushed on into one of them step after step, 0.2 m
 /// in the end; with the bystanders 7.5 cm, and 41 406 collisions in the second. Then, in the
 /// world of three, the fallback's sweeps left the balls closing at 0.9 mm/s (they carry a
@@ -154,10 +156,10 @@ fn regression_columns_of_mixed_masses_stand() {
 /// collisions) and they sank 0.29 mm into it over 40 steps. Now, with nothing accelerating,
 /// the fallback solves a small group exactly once any of its contacts would close by more
 /// than half its band (`regression_squeezed_pebble_comes_to_rest_zero_g` below); none with
-/// the bystanders (1027 collisions in all).
+/// 300 bystanders (4099 collisions in all).
 #[test]
 fn regression_a_pebble_squeezed_between_heavy_balls() {
-    for bystanders in [0, 80] {
+    for bystanders in [0, 80, 300] {
         let mut world = squeeze();
         for k in 0..bystanders {
             world
@@ -166,11 +168,23 @@ fn regression_a_pebble_squeezed_between_heavy_balls() {
         }
         let start = world.momentum();
         let energy = world.kinetic_energy();
-        let (deepest, _) = run(&mut world, 60);
+        let (mut deepest, mut collisions, mut fell_back) = (0.0f64, 0, false);
+        for _ in 0..60 {
+            let stats = *world.step(1.0 / 60.0).unwrap();
+            deepest = deepest.max(stats.max_overlap);
+            collisions += stats.collisions;
+            fell_back |= stats.fell_back;
+        }
         assert!(
             deepest <= 0.01 * RADIUS,
             "with {bystanders} bystanders: {deepest}"
         );
+        // With 300 bystanders the pebble's share runs out before the world's budget: it is
+        // squeezed, and the budget is not spent.
+        assert_eq!(fell_back, bystanders < 300, "with {bystanders} bystanders");
+        if bystanders == 300 {
+            assert!(collisions <= 4200, "{collisions} collisions");
+        }
         assert!((world.momentum() - start).length() <= 1e-9 * start.length().max(1.0));
         assert!(world.kinetic_energy() <= energy);
     }

@@ -192,13 +192,14 @@ const PAIR_BATCH: usize = 16;
 /// and the fallback solves the rest of the step for the crowd that spent it.
 const BODY_SHARE: u32 = 256;
 
-/// [`BODY_SHARE`] in a world with strings: 1024 collisions by default. The fallback leaves
-/// strung bodies out (their pairs are deferred), and where strings are it takes every body:
-/// there a body's share must run out before the budget of a world of 64 dynamic bodies or
-/// more does, so that only that body's impacts are deferred (`sphere-fuzz --strings fast`
-/// seed 223 414, 119 dynamic spheres: at 4096 the world's budget ran out in two steps, each
-/// fallback deferred 91 to 93 pairs, and a sphere of 0.66 g ended a step 5.9% of its radius
-/// into one of 0.59 kg).
+/// The least share in a world with strings: there a body's share is a quarter of the world's
+/// budget, from this to [`BODY_SHARE`] times (1024 to 4096 collisions by default). The
+/// fallback leaves strung bodies out (their pairs are deferred), and where strings are it
+/// takes every body, so there a body's share should run out before the world's budget does,
+/// leaving only that body's impacts deferred (`sphere-fuzz --strings fast` seed 223 414,
+/// 119 dynamic spheres: at 4096 the world's budget ran out in two steps, each fallback
+/// deferred 91 to 93 pairs, and a sphere of 0.66 g ended a step 5.9% of its radius into one
+/// of 0.59 kg).
 const BODY_SHARE_STRUNG: u32 = 64;
 
 /// How far past its share of collisions a body of an impact may be for the impact to be
@@ -1109,7 +1110,7 @@ impl Solver {
         let share = settings
             .max_collisions_per_body
             .saturating_mul(if self.strings {
-                BODY_SHARE_STRUNG
+                (dynamic / 4).clamp(BODY_SHARE_STRUNG, BODY_SHARE)
             } else {
                 BODY_SHARE
             });

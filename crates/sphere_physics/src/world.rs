@@ -68,9 +68,10 @@ pub struct Settings {
     /// touching (up to 1024 more sweeps: a long line of spheres struck hard passes its impulses
     /// on one contact a sweep) ([`StepStats::fell_back`]; bodies on strings are left out of
     /// that solve, which holds no string: their pairs are deferred to the next step instead).
-    /// No body takes more than 256 times this in one step, 64 times in a world with strings (so
-    /// that a sphere caught between fixed ones, which bounces between them without end, cannot
-    /// spend the whole budget of a large world): a body past that share is solved at once
+    /// No body takes more than 256 times this in one step (in a world with strings, a quarter
+    /// of the budget, but from 64 to 256 times this), so that a sphere caught between fixed
+    /// ones, which bounces between them without end, cannot spend the whole budget of a large
+    /// world: a body past that share is solved at once
     /// (without strings, and before any fallback of the step) with every contact touching it
     /// through dynamic bodies, restitution 0 (a light sphere squeezed between heavy ones
     /// bounces faster and faster, without end before the squeeze does; this is how those

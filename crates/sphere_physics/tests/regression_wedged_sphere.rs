@@ -3,11 +3,12 @@
 //! whole world's collision budget on that every step, so every other collision in the world
 //! was deferred: spheres elsewhere passed through each other. Found by review. Now one body
 //! takes at most 256 times `max_collisions_per_body` collisions in a step (4096 at the default
-//! of 16; 64 times until 2026-12-06, as still in a world with strings). Since 2026-12-04 a
-//! body past that share is first solved at once with every contact touching it (restitution
-//! 0, a few times at most: see `regression_light_sphere_squeezed.rs`), and only then are its
-//! impacts deferred: the wedged ball stops between the fixed spheres. In a world whose budget
-//! is below one body's share the budget runs out first, and the fallback stops the ball.
+//! of 16; 64 times until 2026-12-06; in a world with strings a quarter of the world's budget,
+//! from 64 to 256 times). Since 2026-12-04 a body past that share is first solved at once
+//! with every contact touching it (restitution 0, a few times at most: see
+//! `regression_light_sphere_squeezed.rs`), and only then are its impacts deferred: the wedged
+//! ball stops between the fixed spheres. In a world whose budget is below one body's share
+//! the budget runs out first, and the fallback stops the ball.
 
 use sphere_physics::{BodyId, Settings, SphereDesc, World, glam::DVec3};
 

@@ -238,6 +238,8 @@ pub(crate) struct Solver {
     squeeze_done: Vec<u64>,
     /// The string states of the bodies on strings (see [`Solver::string_of`]).
     strung: Vec<Strung>,
+    /// One bit per segment on a string (see [`Solver::bent_pair`]).
+    strung_bits: Vec<u64>,
     /// Whether any body hangs on a string this step.
     strings: bool,
     /// Each segment's version (bumped when its drift changes; older events are stale). Apart
@@ -950,6 +952,12 @@ impl Solver {
             self.position_of[i as usize] = p as u32;
         }
         let words = self.segments.len().div_ceil(64);
+        self.strung_bits.clear();
+        self.strung_bits.resize(words, 0);
+        for s in &self.strung {
+            let p = self.position_of[s.body as usize] as usize;
+            self.strung_bits[p / 64] |= 1 << (p % 64);
+        }
         self.rested_here.clear();
         self.rested_here.resize(words, 0);
         self.loaded.clear();
@@ -1022,11 +1030,11 @@ impl Solver {
         };
         // Most pairs need nothing: apart, not near enough to rest, and dismissed at a glance.
         // A filter finds those first, four at a time and without a branch on any (see
-        // `first_pass_kept`); the rest are kept, one by one. Not with strings or a custom
-        // time-of-impact method: then every pair goes to the full test, as `test_pair` says
-        // (a string bends drifts the glance knows nothing of; a custom method is asked about
-        // every pair that closes).
-        let filter = !self.strings && ctx.toi.is_none();
+        // `first_pass_kept`); the rest are kept, one by one. Not with a custom time-of-impact
+        // method: then every pair goes to the full test, as `test_pair` says (a custom method is
+        // asked about every pair that closes); nor for a pair with a sphere on a string (a
+        // string bends drifts the glance knows nothing of), kept after the filter.
+        let filter = ctx.toi.is_none();
         let pass = FirstPass {
             dt,
             near_reach: (self.resting_scale != 0.0).then_some(self.near_reach),
@@ -1058,6 +1066,13 @@ impl Solver {
                             !solver.may_rest(i, j, ctx) && dismissed,
                             "pair ({i}, {j}) skipped, but it may rest or is not dismissed"
                         );
+                    }
+                }
+                if filter && solver.strings {
+                    for (at, &(i, j)) in batch.iter().enumerate() {
+                        if solver.bent_pair(i as usize, j as usize) {
+                            kept |= 1 << at;
+                        }
                     }
                 }
                 while kept != 0 {
@@ -1484,6 +1499,16 @@ impl Solver {
             && self.versions[event.b as usize] == event.version_b
     }
 
+    /// Whether pair `(i, j)` has a sphere on a string, whose drift a string bends: such a pair
+    /// is never dismissed at a glance (which takes both drifts as straight lines), and is kept
+    /// for the step's deepest overlap whenever tested. Only these pairs: until 2026-12-06 every
+    /// pair was, in a world with a string anywhere (one sphere on a string far from the 100k
+    /// shower doubled its time).
+    #[inline(always)]
+    fn bent_pair(&self, i: usize, j: usize) -> bool {
+        self.strings && (bit(&self.strung_bits, i) || bit(&self.strung_bits, j))
+    }
+
     /// Queues the first impact of pair `(i, j)` (with `i < j`) in `[t, dt]`, if any.
     ///
     /// Most pairs tested can be dismissed at a glance (two spheres closing all through the step
@@ -1504,7 +1529,7 @@ impl Solver {
     ) {
         let (si, sj) = (&self.segments[i], &self.segments[j]);
         let glance = Glance::of(si, sj, t, ctx.dt);
-        if !self.strings && ctx.toi.is_none() {
+        if ctx.toi.is_none() && !self.bent_pair(i, j) {
             self.test_glanced(i, j, t, &glance, ctx, stats);
         } else {
             self.test_pair_fully(i, j, t, &glance, ctx, stats);
@@ -1570,7 +1595,8 @@ impl Solver {
         // a string bends a drift; an impact found below is kept too): any later change to
         // either drift tests the pair again.
         let ends_overlapping = end_squared < allowance * allowance;
-        if self.strings || ends_overlapping {
+        let bent = self.bent_pair(i, j);
+        if bent || ends_overlapping {
             self.tested.push((i as u32, j as u32));
         }
         if d.dot(w) >= 0.0 {
@@ -1616,7 +1642,7 @@ impl Solver {
         // breaking its contract; the built-in ones never do) is no impact: queued, it would
         // strike the pair wherever it is, in the past or at the step's end.
         if let Some(toi) = outcome.time.filter(|toi| (0.0..=rest).contains(toi)) {
-            if !(self.strings || ends_overlapping) {
+            if !(bent || ends_overlapping) {
                 self.tested.push((i as u32, j as u32));
             }
             let mut time = (t + toi).min(ctx.dt);

@@ -249,7 +249,9 @@ impl Solver {
             // loop's reads are random, and waiting for each in turn dominated them.
             prefetch(&self.segments[m as usize]);
         }
-        if self.strings || ctx.toi.is_some() {
+        // Pairs with a sphere on a string take the full test (see `Solver::bent_pair`): all of
+        // `k`'s if it hangs on one, else those of its candidates that do.
+        if ctx.toi.is_some() || self.bent_pair(k, k) {
             for &m in candidates {
                 let m = m as usize;
                 if m <= k && self.is_touched(m) {
@@ -265,7 +267,8 @@ impl Solver {
         let side = Side::of(&self.segments[k], t, ctx.dt);
         if candidates.len() < FEW_CANDIDATES {
             for &m in candidates {
-                self.glance_from(k, m as usize, &side, false, ctx, stats);
+                let bent = self.bent_pair(m as usize, m as usize);
+                self.glance_from(k, m as usize, &side, bent, ctx, stats);
             }
             return;
         }
@@ -285,8 +288,15 @@ impl Solver {
                         .dismisses(self.apart),
                     "the glances side by side differ from body {k}'s glance at candidate {m}"
                 );
-                if dismissed {
+                if dismissed && !self.bent_pair(m as usize, m as usize) {
                     self.glance_from(k, m as usize, &side, false, ctx, stats);
+                }
+            }
+            if self.strings {
+                for (at, &m) in candidates.iter().enumerate() {
+                    if self.bent_pair(m as usize, m as usize) {
+                        kept |= 1 << at;
+                    }
                 }
             }
             while kept != 0 {
@@ -299,8 +309,8 @@ impl Solver {
 
     /// Tests the pair of body `k` and its candidate `m` from `k`'s [`Side`], unless `m` is
     /// touched and comes first (the pair is tested from `m`'s side). With `kept`, the glance
-    /// is known not to dismiss the pair (`kept_by_glances` said so): it goes straight to the
-    /// full test. A dirty `m` is tested only for an impact at this instant (see
+    /// is known not to dismiss the pair (`kept_by_glances` said so), or must not (a sphere on
+    /// a string): it goes straight to the full test. A dirty `m` is tested only for an impact at this instant (see
     /// [`Solver::requery_touched`]).
     #[inline(always)]
     pub(super) fn glance_from(
@@ -338,7 +348,7 @@ impl Solver {
         }
         if kept {
             debug_assert!(
-                !glance.dismisses(self.apart),
+                !glance.dismisses(self.apart) || self.bent_pair(i, j),
                 "pair ({i}, {j}) kept, but dismissed"
             );
             self.test_pair_fully(i, j, t, &glance, ctx, stats);

@@ -1506,7 +1506,13 @@ impl Solver {
     /// shower doubled its time).
     #[inline(always)]
     fn bent_pair(&self, i: usize, j: usize) -> bool {
-        self.strings && (bit(&self.strung_bits, i) || bit(&self.strung_bits, j))
+        self.on_string(i) || self.on_string(j)
+    }
+
+    /// Whether segment `k` hangs on a string (see [`Solver::bent_pair`]).
+    #[inline(always)]
+    fn on_string(&self, k: usize) -> bool {
+        self.strings && bit(&self.strung_bits, k)
     }
 
     /// Queues the first impact of pair `(i, j)` (with `i < j`) in `[t, dt]`, if any.

@@ -71,22 +71,22 @@ pub struct Settings {
     /// No body takes more than 256 times this in one step (in a world with strings, a quarter
     /// of the budget, but from 64 to 256 times this), so that a sphere caught between fixed
     /// ones, which bounces between them without end, cannot spend the whole budget of a large
-    /// world: a body past that share is solved at once
-    /// (without strings, and before any fallback of the step) with every contact touching it
-    /// through dynamic bodies, restitution 0 (a light sphere squeezed between heavy ones
-    /// bounces faster and faster, without end before the squeeze does; this is how those
-    /// bounces end), a few times in a step, and its collisions after that are deferred to the
-    /// next step and counted in [`StepStats::collisions_deferred`]. The shower and gas
-    /// benchmarks take under 0.3 collisions per sphere per step in their first second, and a
-    /// sphere sliding down the dome in the 100k shower's film at its climax up to 2228. With
-    /// substeps, each substep has this budget (and records its collisions): a wedged sphere may
-    /// take `substeps` times as many in one [`World::step`]. Default 16 (64 until 2026-12-01,
-    /// when the budget's end deferred the rest: a landing crowd then sank 4.5 cm into itself),
-    /// at most [`MAX_COLLISIONS_PER_BODY`]. Lowering it makes a landing crowd's steps cheaper
-    /// (a pit of 1000 dropped together: 6.7 µs a sphere a step at 4 against 12.9 at 16, no
-    /// deeper), but not a crowd of hundreds of thousands of contacts, whose fallback solve
-    /// costs more than the collisions it replaces (the 100k shower benchmark's worst step: 5.2
-    /// s at 4, 2.2 s at 16).
+    /// world: a body past that share is solved at once (without strings, and before any
+    /// fallback of the step) with every contact touching it through dynamic bodies,
+    /// restitution 0 (a light sphere squeezed between heavy ones bounces faster and faster,
+    /// without end before the squeeze does; this is how those bounces end), a few times in a
+    /// step, and its collisions after that are deferred to the next step and counted in
+    /// [`StepStats::collisions_deferred`]. The shower and gas benchmarks take under 0.3
+    /// collisions per sphere per step in their first second, and a sphere sliding down the
+    /// dome in the 100k shower's film at its climax up to 2228. With substeps, each substep
+    /// has this budget (and records its collisions): a wedged sphere may take `substeps` times
+    /// as many in one [`World::step`]. Default 16 (64 until 2026-12-01, when the budget's end
+    /// deferred the rest: a landing crowd then sank 4.5 cm into itself), at most
+    /// [`MAX_COLLISIONS_PER_BODY`]. Lowering it makes a landing crowd's steps cheaper (a pit of
+    /// 1000 dropped together: 6.7 µs a sphere a step at 4 against 12.9 at 16, no deeper), but
+    /// not a crowd of hundreds of thousands of contacts, whose fallback solve costs more than
+    /// the collisions it replaces (the 100k shower benchmark's worst step: 5.2 s at 4, 2.2 s at
+    /// 16).
     pub max_collisions_per_body: u32,
     /// Sleeping (off by default): `Some` lets bodies at rest fall asleep, so that a settled
     /// pile costs next to nothing. A body is calm while its speed at each step's end stays

@@ -251,7 +251,7 @@ impl Solver {
         }
         // Pairs with a sphere on a string take the full test (see `Solver::bent_pair`): all of
         // `k`'s if it hangs on one, else those of its candidates that do.
-        if ctx.toi.is_some() || self.bent_pair(k, k) {
+        if ctx.toi.is_some() || self.on_string(k) {
             for &m in candidates {
                 let m = m as usize;
                 if m <= k && self.is_touched(m) {
@@ -267,7 +267,7 @@ impl Solver {
         let side = Side::of(&self.segments[k], t, ctx.dt);
         if candidates.len() < FEW_CANDIDATES {
             for &m in candidates {
-                let bent = self.bent_pair(m as usize, m as usize);
+                let bent = self.on_string(m as usize);
                 self.glance_from(k, m as usize, &side, bent, ctx, stats);
             }
             return;
@@ -288,13 +288,13 @@ impl Solver {
                         .dismisses(self.apart),
                     "the glances side by side differ from body {k}'s glance at candidate {m}"
                 );
-                if dismissed && !self.bent_pair(m as usize, m as usize) {
+                if dismissed && !self.on_string(m as usize) {
                     self.glance_from(k, m as usize, &side, false, ctx, stats);
                 }
             }
             if self.strings {
                 for (at, &m) in candidates.iter().enumerate() {
-                    if self.bent_pair(m as usize, m as usize) {
+                    if self.on_string(m as usize) {
                         kept |= 1 << at;
                     }
                 }
@@ -310,8 +310,8 @@ impl Solver {
     /// Tests the pair of body `k` and its candidate `m` from `k`'s [`Side`], unless `m` is
     /// touched and comes first (the pair is tested from `m`'s side). With `kept`, the glance
     /// is known not to dismiss the pair (`kept_by_glances` said so), or must not (a sphere on
-    /// a string): it goes straight to the full test. A dirty `m` is tested only for an impact at this instant (see
-    /// [`Solver::requery_touched`]).
+    /// a string): it goes straight to the full test. A dirty `m` is tested only for an impact
+    /// at this instant (see [`Solver::requery_touched`]).
     #[inline(always)]
     pub(super) fn glance_from(
         &mut self,

@@ -7,9 +7,9 @@
 //! up to 2228 in a step, and dozens of them ran out of their shares in the same steps. Their
 //! deferred impacts left pairs up to 6.4 mm deep (an eighth of a radius) at the step's end;
 //! with a share of 4096 no pair ends any of those 150 steps 0.25 mm deep. The landing pit of
-//! 10 000 showed the
-//! same in its first layer: spheres in a corner of the box took 1159 to 1410 collisions in its
-//! 16th step, and 21 impacts were deferred, though the world's budget had not run out.
+//! 10 000 showed the same in its first layer: spheres in a corner of the box took 1159 to 1410
+//! collisions in its 16th step, and 21 impacts were deferred, though the world's budget had
+//! not run out.
 //!
 //! In a world with strings a body's share stayed 1024 at first (there the fallback defers the
 //! strung spheres' pairs, so a share must run out before a small world's budget does): with

@@ -2,7 +2,7 @@
 //! several sizes, ours against rapier3d 0.36 (with `--features rapier`), as a markdown table.
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
-//!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases]
+//!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse,table] [--repeat 1] [--phases]
 //!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep]
 //!         [--bouncer]
 //!
@@ -109,10 +109,13 @@ fn parse() -> Result<Options, String> {
             "--scenes" => {
                 options.scenes = value()?.split(',').map(str::to_owned).collect();
                 if let Some(bad) = options.scenes.iter().find(|s| {
-                    !["shower", "gas", "pile", "showers", "apart", "sparse"].contains(&s.as_str())
+                    ![
+                        "shower", "gas", "pile", "showers", "apart", "sparse", "table",
+                    ]
+                    .contains(&s.as_str())
                 }) {
                     return Err(format!(
-                        "unknown scene '{bad}' (shower, gas, pile, showers, apart, sparse)"
+                        "unknown scene '{bad}' (shower, gas, pile, showers, apart, sparse, table)"
                     ));
                 }
             }
@@ -131,7 +134,7 @@ fn parse() -> Result<Options, String> {
             "--bouncer" => options.bouncer = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep] [--bouncer]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse,table] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep] [--bouncer]"
                 );
                 std::process::exit(0);
             }
@@ -213,6 +216,7 @@ fn main() {
                 "apart" => scenes::apart(n, 1),
                 "sparse" => scenes::sparse(n, 1),
                 "pile" => scenes::pile(n, 1),
+                "table" => scenes::table(n, 1),
                 _ => scenes::gas(n, 1),
             };
             // Read by our engine only: rapier's sleeping is always on.

@@ -180,6 +180,87 @@ pub fn pile(n: u32, seed: u64) -> SceneDesc {
     .expect("the pile scene is valid")
 }
 
+/// The share of [`table`]'s floor its spheres cover.
+pub const TABLE_COVER: f64 = 0.25;
+
+/// `n` spheres of radius 0.05 (restitution 0.9) resting on a floor under gravity, a quarter of
+/// it covered, each sliding at 1 m/s in a random horizontal direction (frictionless: they
+/// slide, they do not roll), in a square walled box: marbles or billiards, spheres that rest
+/// on the ground while they meet one another, a game's usual case under gravity. One sphere to
+/// each cell of a square lattice (three and a half diameters apart), jittered within it. The
+/// floor and walls are fixed spheres of radius 1e4 touching the box's faces, as the
+/// [`pile`]'s; each sphere starts touching the floor (its centre `RADIUS` above the floor's
+/// curved surface), so every sphere has a resting contact at every step.
+pub fn table(n: u32, seed: u64) -> SceneDesc {
+    let wall = 1.0e4;
+    let spacing = (std::f64::consts::PI * RADIUS * RADIUS / TABLE_COVER).sqrt();
+    let across = f64::from(n).sqrt().ceil() as u32;
+    let half = 0.5 * spacing * f64::from(across);
+    // splitmix64: the jitter and the directions, the same for a seed on every machine.
+    let mut state = seed;
+    let mut uniform = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        (z ^ (z >> 31)) as f64 / (u64::MAX as f64 + 1.0)
+    };
+    let fixed = |name: &str, position: [f64; 3]| SphereSpec {
+        name: Some(name.to_owned()),
+        position,
+        velocity: [0.0; 3],
+        radius: wall,
+        density: 1.0,
+        restitution: None,
+        force: [0.0; 3],
+        fixed: true,
+        tether: None,
+    };
+    let mut spheres = vec![
+        fixed("floor", [0.0, -wall, 0.0]),
+        fixed("wall x-", [-half - wall, 0.0, 0.0]),
+        fixed("wall x+", [half + wall, 0.0, 0.0]),
+        fixed("wall z-", [0.0, 0.0, -half - wall]),
+        fixed("wall z+", [0.0, 0.0, half + wall]),
+    ];
+    let room = 0.5 * spacing - RADIUS * 1.01;
+    for k in 0..n {
+        let (i, j) = (k % across, k / across);
+        let at = |cell: u32| -half + spacing * (f64::from(cell) + 0.5);
+        let x = at(i) + room * (2.0 * uniform() - 1.0);
+        let z = at(j) + room * (2.0 * uniform() - 1.0);
+        let angle = std::f64::consts::TAU * uniform();
+        // On the floor's sphere: its top is at 0, and 1e4 m of radius falls away by
+        // (x² + z²) / 2e4 at (x, z).
+        let y = ((wall + RADIUS).powi(2) - x * x - z * z).sqrt() - wall;
+        spheres.push(SphereSpec {
+            name: None,
+            position: [x, y, z],
+            velocity: [angle.cos(), 0.0, angle.sin()],
+            radius: RADIUS,
+            density: 1.0,
+            restitution: None,
+            force: [0.0; 3],
+            fixed: false,
+            tether: None,
+        });
+    }
+    SceneDesc {
+        name: format!("table {n}"),
+        description: String::new(),
+        gravity: [0.0, -9.81, 0.0],
+        restitution: 0.9,
+        method: None,
+        integrator: None,
+        dt: None,
+        substeps: None,
+        sleep: None,
+        spheres,
+        generate: Vec::new(),
+        view: None,
+    }
+}
+
 /// Adds to `scene` a ball of radius 0.05 dropped from 1 m onto a fixed sphere of radius 0.1
 /// whose top is 6.1 m above the origin, both of restitution 1, the ball exactly above the
 /// sphere's centre: it bounces straight up and down for ever, far above the scenes' beds

@@ -183,6 +183,10 @@ const FEW_CANDIDATES: usize = 3;
 /// tested (see `Solver::step`).
 const PAIR_BATCH: usize = 16;
 
+/// The fewest segments the resting solve must change for their pairs to be tested again in
+/// one pass over the broad phase (see [`Solver::requery_in_one_pass`]).
+const ONE_PASS_MIN: usize = 64;
+
 /// How many times [`Settings::max_collisions_per_body`] one body may take in a step (the
 /// world's budget is that setting times the dynamic bodies): 4096 by default. In the
 /// 100k-sphere shower benchmark's climax (about 1.4 s in), spheres sliding down the dome in
@@ -446,6 +450,9 @@ pub(crate) struct Solver {
     dirty_bits: Vec<u64>,
     /// Scratch: the touched segments queried in full at the instant already.
     repeats: Vec<u32>,
+    /// Scratch: the pairs with a touched segment found in one pass over the broad phase (see
+    /// [`Solver::requery_in_one_pass`]).
+    touched_pairs: Vec<(u32, u32)>,
     /// While testing a pair with a dirty body: impacts after this are not queued (its query
     /// in full will find them), else infinite.
     queue_until: f64,
@@ -768,7 +775,9 @@ impl Solver {
             self.add_guards(ctx);
             self.solve_resting(ctx, stats);
             self.caching = !self.strings && ctx.toi.is_none();
-            self.requery_touched(0.0, ctx, stats);
+            if !self.requery_in_one_pass(ctx, stats) {
+                self.requery_touched(0.0, ctx, stats);
+            }
         } else {
             self.warm.clear();
             self.rested.clear();

@@ -453,19 +453,31 @@ impl BroadPhase {
 
     /// Body `i`'s box is now `b`.
     pub fn update(&mut self, i: usize, b: &Aabb) {
+        self.update_kept(i, b);
+    }
+
+    /// [`BroadPhase::update`], and whether [`BroadPhase::pairs_batched`] still finds every
+    /// pair of body `i` as its box now is: the body stays in the grid, within its cell's
+    /// envelope (as every grid body's box was at [`BroadPhase::build`], so the grid's scan of
+    /// neighbouring cells still meets all its pairs), or the scene is small enough that every
+    /// pair is compared. A body that leaves the grid, or is in the hierarchy, returns false:
+    /// the hierarchy's pairs are those it was built with.
+    pub fn update_kept(&mut self, i: usize, b: &Aabb) -> bool {
         if self.brute {
-            return;
+            return true;
         }
         if self.grid.holds(i) && self.grid.keep(i, b) {
-            return;
+            return true;
         }
         self.hierarchy.update(i, b);
+        false
     }
 
     /// Appends to `out` every pair `(i, j)` with `i < j` of overlapping boxes, each pair once,
     /// handing `out` to `flush` whenever it holds at least `batch` pairs (`flush` empties it;
     /// the pairs come in batches of about that size). The last pairs are left in `out`.
-    /// Call right after [`BroadPhase::build`] with the same boxes.
+    /// Call right after [`BroadPhase::build`] with the same boxes, or after updates for which
+    /// [`BroadPhase::update_kept`] said true.
     pub fn pairs_batched(
         &self,
         boxes: &[Aabb],

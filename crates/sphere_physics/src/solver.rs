@@ -51,11 +51,13 @@ mod requery;
 mod resting;
 mod separate;
 mod strings;
+mod warm;
 
 use glance::{
     Apart, FirstPass, Glance, Relative, Side, cannot_touch_by, first_pass_kept, kept_by_glances,
 };
 use strings::{STRUNG_OVERLAP, Strung, at_length, bend, taut};
+use warm::WarmLoads;
 
 /// A body's drift within the current step: at `t0` it is at `position`, moving at `velocity`.
 /// Only what pair tests read, in one cache line, so the event loop's random reads stay small;
@@ -328,17 +330,20 @@ pub(crate) struct Solver {
     /// [`Solver::loads`]): other pairs are spared the search.
     loaded: Vec<u64>,
     /// The loads this step's resting solve put on its contacts, `(a, b, load)` with `a < b`
-    /// solver indices, sorted: each pair's impulse as a change of relative speed per second.
-    /// A loaded contact is pressed by at least its load for the rest of the step.
+    /// solver indices, grouped by `a` (in the solve's order within a group): each pair's
+    /// impulse as a change of relative speed per second. A loaded contact is pressed by at
+    /// least its load for the rest of the step.
     loads: Vec<(u32, u32, f64)>,
+    /// Scratch: the loads as the solve leaves them, before they are grouped.
+    loads_unplaced: Vec<(u32, u32, f64)>,
     /// Where each solver index's loads begin in [`Solver::loads`] (as its contacts' lower
     /// index; one more entry for the end), so that a press looks among a body's few contacts
     /// instead of searching them all.
     load_start: Vec<u32>,
-    /// The last resting solve's impulses per second, by the pair's body ids (smaller first),
-    /// sorted: the next solve starts from them (a warm start).
-    warm: Vec<(crate::BodyId, crate::BodyId, f64)>,
-    /// Scratch for the next warm start.
+    /// The last resting solve's impulses per second, by the pair's body ids (smaller first):
+    /// the next solve starts from them (a warm start).
+    warm: WarmLoads,
+    /// Scratch: the loads for the next warm start, as the solve leaves them.
     next_warm: Vec<(crate::BodyId, crate::BodyId, f64)>,
     /// Solver index `p` is body index `order[p]` (the broad phase's spatial order).
     order: Vec<u32>,

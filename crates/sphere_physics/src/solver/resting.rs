@@ -143,9 +143,7 @@ impl Solver {
             return false;
         }
         let (a, b) = (self.extra(i).id, self.extra(j).id);
-        self.warm
-            .binary_search_by_key(&(a.min(b), a.max(b)), |w| (w.0, w.1))
-            .is_ok()
+        self.warm.get(a.min(b), a.max(b)).is_some()
     }
 
     /// Adds to the resting contacts, as guards, the pairs that are not resting contacts but
@@ -951,9 +949,8 @@ impl Solver {
             for k in 0..count {
                 let c = &self.resting[k];
                 let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
-                let key = (a.min(b), a.max(b));
-                if let Ok(w) = self.warm.binary_search_by_key(&key, |w| (w.0, w.1)) {
-                    let impulse = self.warm[w].2 * ctx.dt;
+                if let Some(load) = self.warm.get(a.min(b), a.max(b)) {
+                    let impulse = load * ctx.dt;
                     let c = &mut self.resting[k];
                     c.impulse = impulse;
                     let (a, b, normal) = (c.a as usize, c.b as usize, c.normal);
@@ -1209,7 +1206,7 @@ impl Solver {
     fn keep_resting_loads(&mut self, ctx: &StepContext<'_>) {
         let resting = std::mem::take(&mut self.resting);
         self.next_warm.clear();
-        self.loads.clear();
+        self.loads_unplaced.clear();
         for (n, c) in resting.iter().enumerate().filter(|(_, c)| c.impulse > 0.0) {
             let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
             // The next solve starts from the impulses without this step's pushes, which leave
@@ -1221,12 +1218,11 @@ impl Solver {
                 self.next_warm.push((a.min(b), a.max(b), warm / ctx.dt));
             }
             let load = c.impulse * (c.inverse_mass_a + c.inverse_mass_b) / ctx.dt;
-            self.loads.push((c.a, c.b, load));
+            self.loads_unplaced.push((c.a, c.b, load));
             for k in [c.a as usize, c.b as usize] {
                 self.loaded[k / 64] |= 1 << (k % 64);
             }
         }
-        self.next_warm.sort_unstable_by_key(|w| (w.0, w.1));
         self.rested.clear();
         self.rested.resize(self.order.len().div_ceil(64), 0);
         for c in resting.iter().filter(|c| c.impulse > 0.0) {
@@ -1237,18 +1233,17 @@ impl Solver {
                 }
             }
         }
-        std::mem::swap(&mut self.warm, &mut self.next_warm);
-        self.loads.sort_unstable_by_key(|l| (l.0, l.1));
-        debug_assert!(
-            self.loads
-                .windows(2)
-                .all(|w| (w[0].0, w[0].1) != (w[1].0, w[1].1)),
-            "a pair loaded twice"
-        );
-        // Each lower index's loads start where the counts of the lower indices before it end.
+        self.warm.start(self.next_warm.len());
+        for &(a, b, load) in &self.next_warm {
+            self.warm.insert(a, b, load);
+        }
+        // Grouped by lower index (a counting sort, stable: a press finds the pair's load among
+        // its lower index's few, whatever their order). Each lower index's loads start where
+        // the counts of the lower indices before it end.
+        let n = self.segments.len();
         self.load_start.clear();
-        self.load_start.resize(self.segments.len() + 1, 0);
-        for l in &self.loads {
+        self.load_start.resize(n + 1, 0);
+        for l in &self.loads_unplaced {
             self.load_start[l.0 as usize + 1] += 1;
         }
         let mut sum = 0;
@@ -1256,6 +1251,29 @@ impl Solver {
             sum += *start;
             *start = sum;
         }
+        // Placed from the last back, each at the end of its index's range, which leaves
+        // `load_start[a + 1]` at the start of `a`'s: shifted down by one after.
+        self.loads.clear();
+        self.loads.resize(self.loads_unplaced.len(), (0, 0, 0.0));
+        for &l in self.loads_unplaced.iter().rev() {
+            let end = &mut self.load_start[l.0 as usize + 1];
+            *end -= 1;
+            self.loads[*end as usize] = l;
+        }
+        self.load_start.rotate_left(1);
+        self.load_start[n] = sum;
+        debug_assert!(
+            (0..n).all(|a| {
+                let group =
+                    &self.loads[self.load_start[a] as usize..self.load_start[a + 1] as usize];
+                group.iter().all(|l| l.0 as usize == a)
+                    && group
+                        .iter()
+                        .enumerate()
+                        .all(|(at, l)| group[..at].iter().all(|m| m.1 != l.1))
+            }),
+            "the loads misplaced, or a pair loaded twice"
+        );
         self.resting = resting;
         for ti in 0..self.touched.len() {
             let k = self.touched[ti] as usize;

@@ -1,5 +1,5 @@
-//! The step's results, bit for bit: a landing ball pit, a shower onto a dome and an elastic
-//! gas, each stepped through the public API, digested (every step's collision counts and
+//! The step's results, bit for bit: a landing ball pit, a shower onto a dome, an elastic gas
+//! and spheres sliding on a floor, each stepped through the public API, digested (every step's collision counts and
 //! largest overlap, and every sphere's final position and velocity, to the bit) and compared
 //! with the digest recorded here. (Not the times of impact computed: a change for speed may
 //! spare some.)
@@ -105,6 +105,57 @@ fn a_shower_steps_the_same_bit_for_bit() {
     .build()
     .unwrap();
     check("shower", digest(world, 60).0, 0x818e_59c7_bc8a_6311);
+}
+
+/// 400 spheres of radius 0.05 (restitution 0.9) lying on a floor (a fixed sphere of radius
+/// 1e4, each sphere touching its curved top), sliding at 1 m/s, walled (`sphere_bench`'s
+/// table, smaller): every sphere a resting contact at every step, and the resting solve
+/// changing them all (their pairs then tested again in one pass over the broad phase).
+#[test]
+fn spheres_sliding_on_a_table_step_the_same_bit_for_bit() {
+    let (count, wall, radius) = (400u32, 1.0e4, 0.05);
+    let spacing = (std::f64::consts::PI * radius * radius / 0.25).sqrt();
+    let across = f64::from(count).sqrt().ceil() as u32;
+    let half = 0.5 * spacing * f64::from(across);
+    let fixed = |[x, y, z]: [f64; 3]| {
+        format!("(position: ({x:?}, {y:?}, {z:?}), radius: {wall:?}, fixed: true)")
+    };
+    let mut spheres = vec![
+        fixed([0.0, -wall, 0.0]),
+        fixed([-half - wall, 0.0, 0.0]),
+        fixed([half + wall, 0.0, 0.0]),
+        fixed([0.0, 0.0, -half - wall]),
+        fixed([0.0, 0.0, half + wall]),
+    ];
+    // Each direction turned from the last by the angle whose cosine is 3/5 (no library
+    // trigonometry, so the scene is the same on every platform).
+    let (mut c, mut s) = (1.0f64, 0.0f64);
+    for k in 0..count {
+        let at = |cell: u32| -half + spacing * (f64::from(cell) + 0.5);
+        let (x, z) = (at(k % across), at(k / across));
+        let y = ((wall + radius) * (wall + radius) - x * x - z * z).sqrt() - wall;
+        spheres.push(format!(
+            "(position: ({x:?}, {y:?}, {z:?}), velocity: ({c:?}, 0.0, {s:?}), radius: {radius:?})"
+        ));
+        (c, s) = (0.6 * c - 0.8 * s, 0.8 * c + 0.6 * s);
+    }
+    let scene = SceneDesc::from_ron(&format!(
+        "(name: \"table\", gravity: (0.0, -9.81, 0.0), restitution: 0.9, spheres: [{}])",
+        spheres.join(", ")
+    ))
+    .unwrap();
+    let mut world = scene.build().unwrap();
+    for step in 0..60 {
+        let stats = world.step(DT).unwrap();
+        assert!(
+            stats.resting_contacts >= count && stats.max_overlap < 1e-4,
+            "step {step}: {} resting contacts for {count} spheres on the floor, deepest {} m",
+            stats.resting_contacts,
+            stats.max_overlap
+        );
+    }
+    let (got, _) = digest(scene.build().unwrap(), 60);
+    check("table", got, 0xd81c_562c_98f8_de84);
 }
 
 /// 1000 spheres at 1 m/s in a box of six fixed wall spheres, elastic, no gravity.

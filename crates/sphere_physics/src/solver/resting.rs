@@ -13,6 +13,9 @@ use crate::response::{MAX_EXACT_CONTACTS, compress_with_signed_biases};
 /// `Solver::excess`).
 const DEEP: f64 = 0.01;
 
+/// How many contacts ahead a sweep asks for their bodies (see `sweep_resting_once`).
+const SWEEP_AHEAD: usize = 8;
+
 /// A group of at most this many resting contacts (connected through dynamic bodies) that the
 /// sweeps leave closing is solved exactly, however shallow (see
 /// [`Solver::solve_small_groups_exactly`]).
@@ -819,6 +822,18 @@ impl Solver {
             // stack reaches its base in one pair of sweeps whichever way the stack is listed.
             for k in 0..count {
                 let k = if sweep % 2 == 0 { k } else { count - 1 - k };
+                // Ask for the bodies of the contact a few ahead in the sweep's order: ordered
+                // by height, a large bed's or table's contacts reach their bodies anywhere in
+                // memory.
+                let ahead = if sweep % 2 == 0 {
+                    k + SWEEP_AHEAD
+                } else {
+                    k.wrapping_sub(SWEEP_AHEAD)
+                };
+                if let Some(c) = self.resting.get(ahead) {
+                    prefetch(&self.segments[c.a as usize]);
+                    prefetch(&self.segments[c.b as usize]);
+                }
                 if BLOCKS {
                     let b = self.exact.block_of[k];
                     if b != NOT_LOCAL {

@@ -476,8 +476,9 @@ impl BroadPhase {
     /// Appends to `out` every pair `(i, j)` with `i < j` of overlapping boxes, each pair once,
     /// handing `out` to `flush` whenever it holds at least `batch` pairs (`flush` empties it;
     /// the pairs come in batches of about that size). The last pairs are left in `out`.
-    /// Call right after [`BroadPhase::build`] with the same boxes, or after updates for which
-    /// [`BroadPhase::update_kept`] said true.
+    /// Call right after [`BroadPhase::build`] with the same boxes, or after updates every one
+    /// of which [`BroadPhase::update_kept`] said true for (a body it said false for is left
+    /// out: its grid box is emptied, and the hierarchy's pairs are those it was built with).
     pub fn pairs_batched(
         &self,
         boxes: &[Aabb],

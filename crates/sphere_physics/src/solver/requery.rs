@@ -225,8 +225,11 @@ impl Solver {
     /// given their loads): one pass over the broad phase's pairs, keeping those with a touched
     /// segment, instead of a query for each touched segment, which reads its neighbourhood of
     /// cells for itself (spheres resting on a floor took three to four times the first pass's
-    /// time in those queries). The same pairs are tested, each once, and each touched segment keeps
-    /// its candidates of the instant, as the queries would: the same results, bit for bit.
+    /// time in those queries). Every pair whose boxes overlap is tested, each once, as the
+    /// queries would test it (the grid's pass may offer a few more, whose boxes meet only in
+    /// its rounded comparison, as the first pass does: they cannot meet), and each touched
+    /// segment keeps its candidates of the instant (in another order, without itself, and with
+    /// or without such pairs): the same results, bit for bit.
     /// Returns false, having done nothing but move the boxes, unless candidates are kept
     /// ([`Solver::caching`]: no strings, no custom method), and every touched segment stays
     /// where the broad phase's pass finds its pairs (see [`BroadPhase::update_kept`]).

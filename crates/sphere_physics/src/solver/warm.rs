@@ -1,5 +1,6 @@
 //! The last resting solve's loads, by the pair's body ids, for the next solve's warm start: a
-//! table of open addressing, filled once a step and asked once for each resting contact.
+//! table of open addressing, filled once a step and asked for each resting contact (and
+//! whether a touching pair took a load in the last step).
 //! (It was a list sorted by the ids and searched by halves: on a table of 10 000 spheres
 //! resting on a floor, the sort and the searches took a tenth of the step.)
 
@@ -47,9 +48,14 @@ impl WarmLoads {
         self.len == 0
     }
 
-    /// Forgets every load.
+    /// Forgets every load, keeping the table's size.
     pub(super) fn clear(&mut self) {
-        self.start(0);
+        self.len = 0;
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.slots.fill(Slot::default());
+            self.stamp = 1;
+        }
     }
 
     /// Keeps `load` for the pair `(a, b)` (`a < b`), which has none yet (a resting contact is

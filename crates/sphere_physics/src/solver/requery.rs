@@ -257,10 +257,12 @@ impl Solver {
         let mut batch = std::mem::take(&mut self.pairs);
         found.clear();
         batch.clear();
-        let touched_bits = &self.touched_bits;
-        let touched = |k: u32| touched_bits[k as usize / 64] >> (k % 64) & 1 != 0;
         let mut keep = |batch: &mut Vec<(u32, u32)>| {
-            found.extend(batch.iter().filter(|&&(i, j)| touched(i) || touched(j)));
+            found.extend(
+                batch
+                    .iter()
+                    .filter(|&&(i, j)| self.is_touched(i as usize) || self.is_touched(j as usize)),
+            );
             batch.clear();
         };
         self.broad

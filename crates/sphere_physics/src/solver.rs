@@ -278,7 +278,7 @@ pub(crate) struct Solver {
     resting: Vec<RestingContact>,
     /// Scratch for `Solver::order_resting`: each resting contact's sort key and place, and the
     /// contacts in their new order.
-    resting_keys: Vec<(i64, u64, u32)>,
+    resting_keys: Vec<(u32, i64, u64, u32)>,
     resting_sorted: Vec<RestingContact>,
     /// Scratch for [`Solver::fall_back`]: the pairs it has solved or left to a string's body,
     /// sorted.
@@ -383,7 +383,8 @@ pub(crate) struct Solver {
     group: Vec<Event>,
     ranges: Vec<std::ops::Range<usize>>,
     components: Components,
-    /// Scratch for [`Solver::solve_small_groups_exactly`].
+    /// The resting contacts' groups, found by [`Solver::order_resting`], and scratch for
+    /// [`Solver::solve_small_groups_exactly`].
     small_groups: SmallGroups,
     touched: Vec<u32>,
     local_resting: Vec<bool>,
@@ -491,16 +492,58 @@ struct ExactScratch {
 /// Marks a segment that is not in the group being solved (see `Solver::local_index`).
 const NOT_LOCAL: u32 = u32::MAX;
 
-/// Scratch for [`Solver::solve_small_groups_exactly`]: a union–find over the bodies of the
-/// resting contacts (by solver index), each root's count of contacts, and whether any of them
-/// closes or pushes; then the small groups' contacts, as events sorted by group.
+/// The resting contacts' groups (connected through dynamic bodies), for
+/// [`Solver::order_resting`] and [`Solver::solve_small_groups_exactly`]: a union–find over the
+/// bodies of the resting contacts (by solver index), each root's count of contacts, and
+/// whether any of them closes or pushes; then the small groups' contacts, as events sorted by
+/// group.
 #[derive(Debug, Default)]
 struct SmallGroups {
     parent: Vec<u32>,
-    count: Vec<u32>,
-    closing: Vec<bool>,
-    pushing: Vec<bool>,
+    /// Each root's tally (one place per body, so a body's is one read).
+    tally: Vec<GroupTally>,
     events: Vec<Event>,
+}
+
+impl SmallGroups {
+    /// Joins the bodies of `resting` (of `segments` bodies in all) into groups, through their
+    /// dynamic bodies (a fixed body's inverse mass is 0: the contact says so, without reading
+    /// the body), and clears their tallies.
+    fn join(&mut self, resting: &[RestingContact], segments: usize) {
+        if self.parent.len() < segments {
+            self.parent.resize(segments, 0);
+            self.tally.resize(segments, GroupTally::default());
+        }
+        for c in resting {
+            for k in [c.a, c.b] {
+                self.parent[k as usize] = k;
+                self.tally[k as usize] = GroupTally::default();
+            }
+        }
+        for c in resting {
+            if c.inverse_mass_a != 0.0 && c.inverse_mass_b != 0.0 {
+                union_join(&mut self.parent, c.a as usize, c.b as usize);
+            }
+        }
+    }
+
+    /// Contact `c`'s group, once joined (see [`SmallGroups::join`]): the root of its dynamic
+    /// end, the group's lowest index.
+    fn group_of(parent: &mut [u32], c: &RestingContact) -> usize {
+        union_root(
+            parent,
+            if c.inverse_mass_a != 0.0 { c.a } else { c.b } as usize,
+        )
+    }
+}
+
+/// A group's count of resting contacts, and whether any of them closes or pushes (see
+/// [`SmallGroups`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct GroupTally {
+    count: u32,
+    closing: bool,
+    pushing: bool,
 }
 
 /// The root of `i` in a union–find forest (`parent[r] == r` at a root), halving the path on

@@ -418,41 +418,26 @@ impl Solver {
     /// into itself), and so is the fallback (where this trigger sent a ball sliding into a gap
     /// it overlaps up at 0.48 m/s). The groups are found by a union–find over the bodies,
     /// without sorting every contact (a sort of the pile of 1000's 3700 contacts each step cost
-    /// it 7%).
-    pub(super) fn solve_small_groups_exactly(&mut self, rest: f64, ctx: &StepContext<'_>) {
+    /// it 7%), or taken from [`Solver::order_resting`] when it found them (`joined`).
+    pub(super) fn solve_small_groups_exactly(
+        &mut self,
+        rest: f64,
+        joined: bool,
+        ctx: &StepContext<'_>,
+    ) {
         let mut g = std::mem::take(&mut self.small_groups);
-        let n = self.segments.len();
-        if g.parent.len() < n {
-            g.parent.resize(n, 0);
-            g.count.resize(n, 0);
-            g.closing.resize(n, false);
-            g.pushing.resize(n, false);
+        if !joined {
+            g.join(&self.resting, self.segments.len());
         }
-        let dynamic = |k: u32| !self.segments[k as usize].is_fixed();
-        for c in &self.resting {
-            for k in [c.a, c.b] {
-                g.parent[k as usize] = k;
-                g.count[k as usize] = 0;
-                g.closing[k as usize] = false;
-                g.pushing[k as usize] = false;
-            }
-        }
-        for c in &self.resting {
-            if dynamic(c.a) && dynamic(c.b) {
-                union_join(&mut g.parent, c.a as usize, c.b as usize);
-            }
-        }
-        // A contact's group: the root of its dynamic end (the group's lowest index).
-        let group_of = |parent: &mut [u32], c: &RestingContact| {
-            union_root(parent, if dynamic(c.a) { c.a } else { c.b } as usize)
-        };
+        let group_of = SmallGroups::group_of;
         let mut any = false;
         for c in &self.resting {
             let r = group_of(&mut g.parent, c);
-            g.count[r] += 1;
-            g.pushing[r] |= c.bias > 0.0;
             let closing = self.excess(c, rest, 0.0, ctx) > 0.0;
-            g.closing[r] |= closing;
+            let tally = &mut g.tally[r];
+            tally.count += 1;
+            tally.pushing |= c.bias > 0.0;
+            tally.closing |= closing;
             any |= closing;
         }
         if !any {
@@ -462,8 +447,11 @@ impl Solver {
         g.events.clear();
         for (i, c) in self.resting.iter().enumerate() {
             let r = group_of(&mut g.parent, c);
-            let count = g.count[r] as usize;
-            if (2..=SMALL_GROUP).contains(&count) && g.closing[r] && !g.pushing[r] {
+            let tally = g.tally[r];
+            if (2..=SMALL_GROUP).contains(&(tally.count as usize))
+                && tally.closing
+                && !tally.pushing
+            {
                 // The contact in `version_a` (as `solve_resting_group_exactly` takes it), its
                 // group's root in `version_b`, to sort by.
                 g.events.push(Event {
@@ -565,31 +553,44 @@ impl Solver {
         self.resting = resting;
     }
 
-    /// Orders the resting contacts lowest first along gravity: a forward sweep carries a bed's
-    /// weight down to its floor, the backward one after it carries the floor's push back up.
-    pub(super) fn order_resting(&mut self, ctx: &StepContext<'_>) {
-        if ctx.settings.gravity != DVec3::ZERO {
-            let up = -ctx.settings.gravity;
-            // Sorted as keys (24 bytes: each contact's height worked out once, in
-            // `f64::total_cmp`'s order, then its pair) and gathered once, not moved about whole
-            // (104 bytes) by the sort.
-            self.resting_keys.clear();
-            for (n, c) in self.resting.iter().enumerate() {
-                let a = &self.segments[c.a as usize];
-                let bits = (a.position + c.normal * a.radius()).dot(up).to_bits() as i64;
-                let height = bits ^ (((bits >> 63) as u64) >> 1) as i64;
-                let pair = (u64::from(c.a) << 32) | u64::from(c.b);
-                self.resting_keys.push((height, pair, n as u32));
-            }
-            self.resting_keys.sort_unstable();
-            self.resting_sorted.clear();
-            self.resting_sorted.extend(
-                self.resting_keys
-                    .iter()
-                    .map(|&(_, _, n)| self.resting[n as usize]),
-            );
-            std::mem::swap(&mut self.resting, &mut self.resting_sorted);
+    /// Orders the resting contacts by group (connected through dynamic bodies; see
+    /// [`SmallGroups`]), each group's lowest first along gravity: a forward sweep carries a
+    /// bed's weight down to its floor, the backward one after it carries the floor's push back
+    /// up. Groups share no body whose velocity a sweep changes, so their order among one
+    /// another changes nothing in any group's solve but the rounding of the sweeps' sums; in
+    /// the order of their lowest body, which is the bodies' order in memory (spheres lying on
+    /// a floor each rest alone: ordered by height, their contacts reached their bodies
+    /// anywhere in memory, in every pass over them). Returns whether it ordered them, and so
+    /// left their groups in [`Solver::small_groups`].
+    pub(super) fn order_resting(&mut self, ctx: &StepContext<'_>) -> bool {
+        if ctx.settings.gravity == DVec3::ZERO {
+            return false;
         }
+        let up = -ctx.settings.gravity;
+        let mut g = std::mem::take(&mut self.small_groups);
+        g.join(&self.resting, self.segments.len());
+        // Sorted as keys (32 bytes: each contact's group, its height worked out once, in
+        // `f64::total_cmp`'s order, then its pair) and gathered once, not moved about whole
+        // (104 bytes) by the sort.
+        self.resting_keys.clear();
+        for (n, c) in self.resting.iter().enumerate() {
+            let group = SmallGroups::group_of(&mut g.parent, c) as u32;
+            let a = &self.segments[c.a as usize];
+            let bits = (a.position + c.normal * a.radius()).dot(up).to_bits() as i64;
+            let height = bits ^ (((bits >> 63) as u64) >> 1) as i64;
+            let pair = (u64::from(c.a) << 32) | u64::from(c.b);
+            self.resting_keys.push((group, height, pair, n as u32));
+        }
+        self.small_groups = g;
+        self.resting_keys.sort_unstable();
+        self.resting_sorted.clear();
+        self.resting_sorted.extend(
+            self.resting_keys
+                .iter()
+                .map(|&(_, _, _, n)| self.resting[n as usize]),
+        );
+        std::mem::swap(&mut self.resting, &mut self.resting_sorted);
+        true
     }
 
     /// Finds the resting sweeps' blocks: a body much lighter than a dynamic one it rests
@@ -911,7 +912,7 @@ impl Solver {
     /// the bodies it changed as touched.
     pub(super) fn solve_resting(&mut self, ctx: &StepContext<'_>, stats: &mut StepStats) {
         let threshold = self.sweep_threshold();
-        self.order_resting(ctx);
+        let joined = self.order_resting(ctx);
         self.push_saved.clear();
         let pushing = self.resting.iter().any(|c| c.bias > 0.0);
         if pushing {
@@ -930,18 +931,23 @@ impl Solver {
         // pushes on nearly opposite sides of a small sphere, each below the resting speed,
         // took impulses that cancelled, and the next step's warm start from them, its normals
         // turned a little, sent it off.)
-        if self.resting.iter().any(|c| {
-            let smaller = self.segments[c.a as usize]
-                .radius()
-                .min(self.segments[c.b as usize].radius());
-            self.deep_push(c.bias, smaller, ctx)
-        }) {
+        // (Only a contact that pushes can push deeply: the others' bodies are not read.)
+        if pushing
+            && self.resting.iter().any(|c| {
+                c.bias > 0.0 && {
+                    let smaller = self.segments[c.a as usize]
+                        .radius()
+                        .min(self.segments[c.b as usize].radius());
+                    self.deep_push(c.bias, smaller, ctx)
+                }
+            })
+        {
             self.solve_pushes(threshold, ctx);
         } else {
             self.warm_start(ctx);
             self.sweep_resting(threshold, RESTING_SWEEPS, ctx.dt, ctx);
             self.solve_deep_groups_exactly(ctx.dt, true, ctx);
-            self.solve_small_groups_exactly(ctx.dt, ctx);
+            self.solve_small_groups_exactly(ctx.dt, joined, ctx);
             if pushing && self.pushed_too_fast(ctx) {
                 self.solve_pushes(threshold, ctx);
             }
@@ -1222,6 +1228,8 @@ impl Solver {
         let resting = std::mem::take(&mut self.resting);
         self.next_warm.clear();
         self.loads_unplaced.clear();
+        self.rested.clear();
+        self.rested.resize(self.order.len().div_ceil(64), 0);
         for (n, c) in resting.iter().enumerate().filter(|(_, c)| c.impulse > 0.0) {
             let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
             // The next solve starts from the impulses without this step's pushes, which leave
@@ -1234,16 +1242,13 @@ impl Solver {
             }
             let load = c.impulse * (c.inverse_mass_a + c.inverse_mass_b) / ctx.dt;
             self.loads_unplaced.push((c.a, c.b, load));
-            for k in [c.a as usize, c.b as usize] {
+            // Each body loaded, and each dynamic one (its inverse mass not 0) rested, by its
+            // index in the world.
+            for (k, inverse_mass) in [(c.a, c.inverse_mass_a), (c.b, c.inverse_mass_b)] {
+                let k = k as usize;
                 self.loaded[k / 64] |= 1 << (k % 64);
-            }
-        }
-        self.rested.clear();
-        self.rested.resize(self.order.len().div_ceil(64), 0);
-        for c in resting.iter().filter(|c| c.impulse > 0.0) {
-            for k in [c.a, c.b] {
-                if !self.segments[k as usize].is_fixed() {
-                    let i = self.order[k as usize] as usize;
+                if inverse_mass != 0.0 {
+                    let i = self.order[k] as usize;
                     self.rested[i / 64] |= 1 << (i % 64);
                 }
             }

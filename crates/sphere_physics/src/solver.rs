@@ -276,9 +276,12 @@ pub(crate) struct Solver {
     /// it, worked out once per step from the tolerance.
     apart: Apart,
     resting: Vec<RestingContact>,
-    /// Scratch for `Solver::order_resting`: each resting contact's sort key and place, and the
-    /// contacts in their new order.
+    /// Scratch for `Solver::order_resting`: each resting contact's sort key and place (twice:
+    /// the keys placed by group), where each group's keys start, and the contacts in their new
+    /// order.
     resting_keys: Vec<(u32, i64, u64, u32)>,
+    resting_keys_placed: Vec<(u32, i64, u64, u32)>,
+    group_start: Vec<u32>,
     resting_sorted: Vec<RestingContact>,
     /// Scratch for [`Solver::fall_back`]: the pairs it has solved or left to a string's body,
     /// sorted.

@@ -582,7 +582,7 @@ impl Solver {
             self.resting_keys.push((group, height, pair, n as u32));
         }
         self.small_groups = g;
-        self.resting_keys.sort_unstable();
+        self.sort_resting_keys();
         self.resting_sorted.clear();
         self.resting_sorted.extend(
             self.resting_keys
@@ -591,6 +591,50 @@ impl Solver {
         );
         std::mem::swap(&mut self.resting, &mut self.resting_sorted);
         true
+    }
+
+    /// Sorts [`Solver::resting_keys`] (unique: each ends with its contact's place). Where the
+    /// contacts are many for the bodies (a quarter as many or more), placed by group first (a
+    /// counting sort over the bodies, in O(contacts + bodies)), then each group of more than
+    /// one sorted on its own: the same order as one sort of all (on a table of 1000, whose
+    /// spheres each rest in a group of one to three contacts, the sort was a tenth of the
+    /// step).
+    fn sort_resting_keys(&mut self) {
+        let (keys, bodies) = (self.resting_keys.len(), self.segments.len());
+        if keys < 64 || 4 * keys < bodies {
+            self.resting_keys.sort_unstable();
+            return;
+        }
+        let start = &mut self.group_start;
+        start.clear();
+        start.resize(bodies + 1, 0);
+        for key in &self.resting_keys {
+            start[key.0 as usize + 1] += 1;
+        }
+        let mut sum = 0;
+        for at in start.iter_mut() {
+            sum += *at;
+            *at = sum;
+        }
+        let placed = &mut self.resting_keys_placed;
+        placed.clear();
+        placed.resize(keys, (0, 0, 0, 0));
+        // (Each group's next place: `start[g]` counts up to where group `g + 1` starts.)
+        for &key in &self.resting_keys {
+            let at = &mut start[key.0 as usize];
+            placed[*at as usize] = key;
+            *at += 1;
+        }
+        let mut from = 0;
+        while from < keys {
+            let group = placed[from].0;
+            let to = start[group as usize] as usize;
+            if to - from > 1 {
+                placed[from..to].sort_unstable();
+            }
+            from = to;
+        }
+        std::mem::swap(&mut self.resting_keys, &mut self.resting_keys_placed);
     }
 
     /// Finds the resting sweeps' blocks: a body much lighter than a dynamic one it rests

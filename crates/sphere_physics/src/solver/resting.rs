@@ -1012,6 +1012,19 @@ impl Solver {
         let count = self.resting.len();
         if !self.warm.is_empty() {
             for k in 0..count {
+                // Ask for the bodies' ids two looks ahead and, once they are near, the pair's
+                // place in the table one look ahead: the table is reached at random, and the
+                // ids too where the bodies' order in memory is not their ids' (with the loads
+                // kept after the solve asking ahead as well, the 100k table's resting
+                // contacts took 0.94x the time; the 1k table's step the same).
+                if let Some(c) = self.resting.get(k + 2 * SWEEP_AHEAD) {
+                    prefetch(self.extra(c.a as usize));
+                    prefetch(self.extra(c.b as usize));
+                }
+                if let Some(c) = self.resting.get(k + SWEEP_AHEAD) {
+                    let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
+                    self.warm.prefetch(a.min(b), a.max(b));
+                }
                 let c = &self.resting[k];
                 let (a, b) = (self.extra(c.a as usize).id, self.extra(c.b as usize).id);
                 if let Some(load) = self.warm.get(a.min(b), a.max(b)) {
@@ -1298,7 +1311,10 @@ impl Solver {
             }
         }
         self.warm.start(self.next_warm.len());
-        for &(a, b, load) in &self.next_warm {
+        for (n, &(a, b, load)) in self.next_warm.iter().enumerate() {
+            if let Some(&(a, b, _)) = self.next_warm.get(n + SWEEP_AHEAD) {
+                self.warm.prefetch(a, b);
+            }
             self.warm.insert(a, b, load);
         }
         // Grouped by lower index (a counting sort, stable: a press finds the pair's load among

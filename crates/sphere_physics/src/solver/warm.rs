@@ -103,6 +103,14 @@ impl WarmLoads {
         }
     }
 
+    /// Asks for the slot where the pair `(a, b)` (`a < b`) is first looked for.
+    #[inline]
+    pub(super) fn prefetch(&self, a: BodyId, b: BodyId) {
+        if let Some(slot) = self.slots.get(self.slot_of((a.0, b.0))) {
+            super::prefetch(slot);
+        }
+    }
+
     /// The first slot to look in for `key`: the ids mixed (a multiply and a shift, as Fx-style
     /// hashes do), so that neighbouring ids spread over the table.
     #[inline]

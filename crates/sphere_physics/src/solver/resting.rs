@@ -13,7 +13,9 @@ use crate::response::{MAX_EXACT_CONTACTS, compress_with_signed_biases};
 /// `Solver::excess`).
 const DEEP: f64 = 0.01;
 
-/// How many contacts ahead a sweep asks for their bodies (see `sweep_resting_once`).
+/// How many contacts ahead a sweep asks for their bodies (see `sweep_resting_once`), and the
+/// warm start and the loads kept after the solve for their places in the table of loads (see
+/// `warm_start`, `keep_resting_loads`).
 const SWEEP_AHEAD: usize = 8;
 
 /// A group of at most this many resting contacts (connected through dynamic bodies) that the
@@ -569,9 +571,9 @@ impl Solver {
         let up = -ctx.settings.gravity;
         let mut g = std::mem::take(&mut self.small_groups);
         g.join(&self.resting, self.segments.len());
-        // Sorted as keys (32 bytes: each contact's group, its height worked out once, in
-        // `f64::total_cmp`'s order, then its pair) and gathered once, not moved about whole
-        // (104 bytes) by the sort.
+        // Sorted as small keys (each contact's group, its height worked out once, in
+        // `f64::total_cmp`'s order, its pair, then its place) and gathered once, not moved
+        // about whole (104 bytes) by the sort.
         self.resting_keys.clear();
         for (n, c) in self.resting.iter().enumerate() {
             let group = SmallGroups::group_of(&mut g.parent, c) as u32;
@@ -868,8 +870,8 @@ impl Solver {
             for k in 0..count {
                 let k = if sweep % 2 == 0 { k } else { count - 1 - k };
                 // Ask for the bodies of the contact a few ahead in the sweep's order: ordered
-                // by height, a large bed's or table's contacts reach their bodies anywhere in
-                // memory.
+                // by height within their group, a large bed's contacts reach their bodies
+                // anywhere in memory.
                 let ahead = if sweep % 2 == 0 {
                     k + SWEEP_AHEAD
                 } else {

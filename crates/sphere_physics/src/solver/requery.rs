@@ -5,6 +5,10 @@
 
 use super::*;
 
+/// How many pairs ahead the one-pass re-query asks for the bodies of the pair it will test (see
+/// `Solver::requery_in_one_pass`).
+const PAIRS_AHEAD: usize = 8;
+
 impl Solver {
     /// Starts the step's stamps: no segment has been queried at any instant of it.
     pub(super) fn start_stamps(&mut self) {
@@ -300,7 +304,14 @@ impl Solver {
                 }
             }
         }
-        for &(i, j) in &found {
+        for (n, &(i, j)) in found.iter().enumerate() {
+            // Ask ahead for the bodies' `Extra`s (a pair's test reads them for its press), kept
+            // in the bodies' order, not the grid's (the 100k table's resting contacts, this
+            // pass among them: 397 to 472 ns a sphere a step against 422 to 472, six turns).
+            if let Some(&(a, b)) = found.get(n + PAIRS_AHEAD) {
+                prefetch(self.extra(a as usize));
+                prefetch(self.extra(b as usize));
+            }
             self.test_pair(i as usize, j as usize, 0.0, ctx, stats);
         }
         self.touched_pairs = found;

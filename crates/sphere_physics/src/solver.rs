@@ -549,6 +549,39 @@ struct GroupTally {
     pushing: bool,
 }
 
+/// Places `items` in `placed` grouped by `bucket` (each below `buckets`), keeping their order
+/// within a bucket (a counting sort), and leaves in `starts` where each bucket's items start
+/// (`buckets + 1` places, the last the count of all).
+fn place_by_bucket<T: Copy>(
+    items: &[T],
+    bucket: impl Fn(&T) -> usize,
+    buckets: usize,
+    starts: &mut Vec<u32>,
+    placed: &mut Vec<T>,
+) {
+    starts.clear();
+    starts.resize(buckets + 1, 0);
+    for item in items {
+        starts[bucket(item) + 1] += 1;
+    }
+    let mut sum = 0;
+    for start in starts.iter_mut() {
+        sum += *start;
+        *start = sum;
+    }
+    // Placed from the last back, each at the end of its bucket's range, which leaves
+    // `starts[b + 1]` at the start of bucket `b`'s: shifted down by one after.
+    placed.clear();
+    placed.extend_from_slice(items);
+    for &item in items.iter().rev() {
+        let end = &mut starts[bucket(&item) + 1];
+        *end -= 1;
+        placed[*end as usize] = item;
+    }
+    starts.rotate_left(1);
+    starts[buckets] = sum;
+}
+
 /// The root of `i` in a union–find forest (`parent[r] == r` at a root), halving the path on
 /// the way.
 fn union_root(parent: &mut [u32], mut i: usize) -> usize {

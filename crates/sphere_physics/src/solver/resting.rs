@@ -607,30 +607,17 @@ impl Solver {
             self.resting_keys.sort_unstable();
             return;
         }
-        let start = &mut self.group_start;
-        start.clear();
-        start.resize(bodies + 1, 0);
-        for key in &self.resting_keys {
-            start[key.0 as usize + 1] += 1;
-        }
-        let mut sum = 0;
-        for at in start.iter_mut() {
-            sum += *at;
-            *at = sum;
-        }
+        place_by_bucket(
+            &self.resting_keys,
+            |key| key.0 as usize,
+            bodies,
+            &mut self.group_start,
+            &mut self.resting_keys_placed,
+        );
         let placed = &mut self.resting_keys_placed;
-        placed.clear();
-        placed.resize(keys, (0, 0, 0, 0));
-        // (Each group's next place: `start[g]` counts up to where group `g + 1` starts.)
-        for &key in &self.resting_keys {
-            let at = &mut start[key.0 as usize];
-            placed[*at as usize] = key;
-            *at += 1;
-        }
         let mut from = 0;
         while from < keys {
-            let group = placed[from].0;
-            let to = start[group as usize] as usize;
+            let to = self.group_start[placed[from].0 as usize + 1] as usize;
             if to - from > 1 {
                 placed[from..to].sort_unstable();
             }
@@ -1319,31 +1306,16 @@ impl Solver {
             }
             self.warm.insert(a, b, load);
         }
-        // Grouped by lower index (a counting sort, stable: a press finds the pair's load among
-        // its lower index's few, whatever their order). Each lower index's loads start where
-        // the counts of the lower indices before it end.
+        // Grouped by lower index (stable: a press finds the pair's load among its lower
+        // index's few, whatever their order).
         let n = self.segments.len();
-        self.load_start.clear();
-        self.load_start.resize(n + 1, 0);
-        for l in &self.loads_unplaced {
-            self.load_start[l.0 as usize + 1] += 1;
-        }
-        let mut sum = 0;
-        for start in &mut self.load_start {
-            sum += *start;
-            *start = sum;
-        }
-        // Placed from the last back, each at the end of its index's range, which leaves
-        // `load_start[a + 1]` at the start of `a`'s: shifted down by one after.
-        self.loads.clear();
-        self.loads.resize(self.loads_unplaced.len(), (0, 0, 0.0));
-        for &l in self.loads_unplaced.iter().rev() {
-            let end = &mut self.load_start[l.0 as usize + 1];
-            *end -= 1;
-            self.loads[*end as usize] = l;
-        }
-        self.load_start.rotate_left(1);
-        self.load_start[n] = sum;
+        place_by_bucket(
+            &self.loads_unplaced,
+            |l| l.0 as usize,
+            n,
+            &mut self.load_start,
+            &mut self.loads,
+        );
         debug_assert!(
             (0..n).all(|a| {
                 let group =

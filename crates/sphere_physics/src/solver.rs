@@ -227,7 +227,9 @@ pub(crate) struct Solver {
     segments: Vec<Segment>,
     /// Each body's [`Extra`], in body order: segment `k`'s is `extras[order[k]]`.
     extras: Vec<Extra>,
-    /// Each body's velocity kick after the drift, in body order (read only at the end).
+    /// Each body's velocity kick after the drift, in body order (read only at the end); empty
+    /// while every one is zero (semi-implicit Euler's), so that such a step neither writes
+    /// nor reads them.
     kicks_after: Vec<DVec3>,
     /// The largest component of any kick after the drift: when it is below half the largest
     /// f64, a velocity below that half cannot overflow when its kick is added.
@@ -976,7 +978,14 @@ impl Solver {
             }
             self.boxes.push(swept_box(&segment, dt, settings));
             self.segments.push(segment);
-            self.kicks_after.push(kicks.1);
+            // Compared bit for bit: a kick of -0.0 must be added as one (it keeps a velocity
+            // of -0.0 negative).
+            let zero = kicks.1.to_array().map(f64::to_bits) == [0; 3];
+            if !zero || !self.kicks_after.is_empty() {
+                // The first kick after that is not zero: the zeros before it written now.
+                self.kicks_after.resize(index, DVec3::ZERO);
+                self.kicks_after.push(kicks.1);
+            }
             self.largest_kick_after = self.largest_kick_after.max(kicks.1.abs().max_element());
             self.extras.push(Extra {
                 inverse_mass: body.inverse_mass(),
@@ -1417,12 +1426,8 @@ impl Solver {
         // summing the energies and momentum while each body is at hand.
         let (mut kinetic, mut potential, mut momentum) = (0.0, 0.0, DVec3::ZERO);
         let mut strung = self.strung.iter().peekable();
-        for (index, ((body, kick_after), &p)) in bodies
-            .iter_mut()
-            .zip(&self.kicks_after)
-            .zip(&self.position_of)
-            .enumerate()
-        {
+        let kicks_after = !self.kicks_after.is_empty();
+        for (index, (body, &p)) in bodies.iter_mut().zip(&self.position_of).enumerate() {
             // The segments are gathered in spatial order: ask for one a little ahead, so the
             // reads overlap instead of each waiting for memory in turn.
             if let Some(&ahead) = self.position_of.get(index + WRITE_BACK_AHEAD) {
@@ -1430,7 +1435,12 @@ impl Solver {
             }
             let segment = &self.segments[p as usize];
             let mut position = segment.position_at(dt);
-            let mut velocity = segment.velocity + *kick_after;
+            let kick_after = if kicks_after {
+                self.kicks_after[index]
+            } else {
+                DVec3::ZERO
+            };
+            let mut velocity = segment.velocity + kick_after;
             if let Some(string) = strung.next_if(|s| s.body as usize == index) {
                 (position, velocity) = taut(position, velocity, string.tether);
             }
@@ -1576,8 +1586,10 @@ impl Solver {
         // The velocity it will end the step with: its kick after the drift comes on top (looked
         // up only when the sum could overflow, which needs one of them past half the range).
         let mut v = self.segments[k].velocity;
-        if !(v.abs().max_element() < HALF_RANGE && self.largest_kick_after < HALF_RANGE) {
-            v += self.kicks_after[self.order[k] as usize];
+        if !(v.abs().max_element() < HALF_RANGE && self.largest_kick_after < HALF_RANGE)
+            && let Some(kick) = self.kicks_after.get(self.order[k] as usize)
+        {
+            v += *kick;
         }
         let b = &self.boxes[k];
         // `x - x` is 0 for every finite `x` and NaN for an infinite or NaN one: one comparison

@@ -29,6 +29,7 @@
 
 use glam::DVec3;
 
+use crate::sleep::SleepState;
 use crate::{Body, Settings};
 
 /// The fewest bodies asleep for a step to leave any out: fewer cost less to step than to sort
@@ -104,6 +105,7 @@ impl Dormant {
     pub fn choose(
         &mut self,
         bodies: &[Body],
+        states: &[SleepState],
         settings: &Settings,
         dt: f64,
         generation: u64,
@@ -111,7 +113,7 @@ impl Dormant {
         let n = bodies.len();
         if self.key != Some(generation) {
             self.key = Some(generation);
-            self.index_asleep(bodies, settings);
+            self.index_asleep(bodies, states, settings);
         }
         if self.by_x.len() < FEWEST_ASLEEP {
             return false;
@@ -209,8 +211,9 @@ impl Dormant {
                     return false;
                 }
                 for e in from..to {
-                    let b = &bodies[self.by_x[e].1 as usize];
-                    let Err(at) = self.islands.binary_search(&b.island) else {
+                    let index = self.by_x[e].1 as usize;
+                    let (b, island) = (&bodies[index], states[index].island());
+                    let Err(at) = self.islands.binary_search(&island) else {
                         continue;
                     };
                     let p = b.position();
@@ -220,7 +223,6 @@ impl Dormant {
                         continue;
                     }
                     // Its island comes into the step.
-                    let island = b.island;
                     self.islands.insert(at, island);
                     let k = self.boxes.partition_point(|x| x.island < island);
                     let taken = &self.boxes[k];
@@ -284,18 +286,18 @@ impl Dormant {
     }
 
     /// Indexes the bodies asleep (by x and by island), and lists those awake.
-    fn index_asleep(&mut self, bodies: &[Body], settings: &Settings) {
+    fn index_asleep(&mut self, bodies: &[Body], states: &[SleepState], settings: &Settings) {
         self.by_x.clear();
         self.by_island.clear();
         self.awake.clear();
         self.largest_radius = 0.0;
         self.left_out_acceleration = 0.0;
-        for (i, body) in bodies.iter().enumerate() {
+        for (i, (body, state)) in bodies.iter().zip(states).enumerate() {
             if !body.asleep {
                 self.awake.push(i as u32);
             } else if !body.is_fixed() {
                 self.by_x.push((body.position().x, i as u32));
-                self.by_island.push((body.island, i as u32));
+                self.by_island.push((state.island(), i as u32));
                 self.largest_radius = self.largest_radius.max(body.radius());
                 let a = body.acceleration(settings.gravity).abs().max_element();
                 self.left_out_acceleration = self.left_out_acceleration.max(a);

@@ -40,9 +40,31 @@ const GROUNDED: u8 = 1;
 const BLOCKED: u8 = 2;
 const AWAKE: u8 = 4;
 
+/// A body's sleeping state beyond whether it is asleep ([`Body`] holds that), kept by the
+/// [`Sleeper`] beside the world's bodies, at the same index: the passes over every body each
+/// step then read and write less.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct SleepState {
+    /// While awake, how long its speed has stayed below the sleeping speed (seconds).
+    calm: f64,
+    /// While asleep, the group it fell asleep with (woken together).
+    island: u64,
+    /// While asleep, where it fell asleep: moved from there, it wakes.
+    rest: DVec3,
+}
+
+impl SleepState {
+    /// While asleep, the group it fell asleep with.
+    pub fn island(&self) -> u64 {
+        self.island
+    }
+}
+
 /// The world's sleeping state between steps, and its buffers.
 #[derive(Debug, Default)]
 pub(crate) struct Sleeper {
+    /// Each body's [`SleepState`], at its index in the world.
+    states: Vec<SleepState>,
     /// Union-find over body indices: the groups of touching dynamic bodies.
     parent: Vec<u32>,
     /// Per body, then per group (at its root): `GROUNDED`, `BLOCKED`, `AWAKE`.
@@ -69,6 +91,27 @@ pub(crate) struct Sleeper {
 }
 
 impl Sleeper {
+    /// A body was added (the world's last): its state is new.
+    pub fn added(&mut self) {
+        self.states.push(SleepState::default());
+    }
+
+    /// The body at `index` was removed: those after it move down one place.
+    pub fn removed(&mut self, index: usize) {
+        self.states.remove(index);
+    }
+
+    /// The body at `index` was replaced by a new one, or given a calm it must gather anew (it
+    /// was changed, and may be where it would never have come to rest).
+    pub fn reset(&mut self, index: usize) {
+        self.states[index] = SleepState::default();
+    }
+
+    /// Each body's state, at its index in the world.
+    pub fn states(&self) -> &[SleepState] {
+        &self.states
+    }
+
     /// Before a step: wakes every body if sleeping is off or gravity changed. Returns whether
     /// the step has nothing to do (see `quiet`).
     pub fn before_step(
@@ -100,9 +143,10 @@ impl Sleeper {
     /// turned off).
     fn wake_all(&mut self, bodies: &mut [Body]) {
         self.generation += 1;
-        for body in bodies.iter_mut() {
+        debug_assert_eq!(bodies.len(), self.states.len(), "a state per body");
+        for (body, state) in bodies.iter_mut().zip(&mut self.states) {
             body.asleep = false;
-            body.calm = 0.0;
+            state.calm = 0.0;
         }
         self.asleep = 0;
         self.quiet = false;
@@ -139,15 +183,15 @@ impl Sleeper {
         let all = only.is_none().then_some(0..bodies.len());
         let taken = only.map(|(indices, _)| indices.iter().map(|&i| i as usize));
         for index in all.into_iter().flatten().chain(taken.into_iter().flatten()) {
-            let body = &mut bodies[index];
+            let (body, state) = (&mut bodies[index], &mut self.states[index]);
             if body.is_fixed() {
                 moving |= body.desc.velocity != DVec3::ZERO;
                 continue;
             }
             dynamic += 1;
             if body.asleep {
-                if body.desc.velocity != DVec3::ZERO || body.desc.position != body.rest {
-                    self.wake.push(body.island);
+                if body.desc.velocity != DVec3::ZERO || body.desc.position != state.rest {
+                    self.wake.push(state.island);
                 }
             } else if body.tether().is_none()
                 && body.desc.velocity.length() < sleep.speed
@@ -157,10 +201,10 @@ impl Sleeper {
                 && body.acceleration(gravity) != DVec3::ZERO
             {
                 // Calm this step: `calm > 0` from here on (see `ready_to_sleep`).
-                body.calm += dt;
-                ready |= ready_to_sleep(body, sleep);
+                state.calm += dt;
+                ready |= ready_to_sleep(state, sleep);
             } else {
-                body.calm = 0.0;
+                state.calm = 0.0;
             }
         }
         self.wake_islands(bodies);
@@ -189,10 +233,10 @@ impl Sleeper {
         self.generation += 1;
         self.wake.sort_unstable();
         self.wake.dedup();
-        for body in bodies.iter_mut() {
-            if body.asleep && self.wake.binary_search(&body.island).is_ok() {
+        for (body, state) in bodies.iter_mut().zip(&mut self.states) {
+            if body.asleep && self.wake.binary_search(&state.island).is_ok() {
                 body.asleep = false;
-                body.calm = 0.0;
+                state.calm = 0.0;
                 self.asleep -= 1;
             }
         }
@@ -202,7 +246,7 @@ impl Sleeper {
     /// Wakes the island of `body`, if it is asleep.
     pub fn wake_island_of(&mut self, bodies: &mut [Body], index: usize) {
         if bodies[index].asleep {
-            self.wake.push(bodies[index].island);
+            self.wake.push(self.states[index].island);
             self.wake_islands(bodies);
         }
     }
@@ -216,8 +260,9 @@ impl Sleeper {
         self.wake.extend(
             bodies
                 .iter()
-                .filter(|b| b.asleep && gap(b, centre, radius) <= SLEEP_CONTACT * b.radius())
-                .map(|b| b.island),
+                .zip(&self.states)
+                .filter(|(b, _)| b.asleep && gap(b, centre, radius) <= SLEEP_CONTACT * b.radius())
+                .map(|(_, state)| state.island),
         );
         self.wake_islands(bodies);
     }
@@ -268,14 +313,14 @@ impl Sleeper {
         );
         // Each group's flags gathered at its root, a body not ready blocking it. A group's
         // root is its smallest index (see `union`), so it is met before its other bodies.
-        for (i, body) in bodies.iter().enumerate() {
+        for (i, (body, state)) in bodies.iter().zip(&self.states).enumerate() {
             if body.is_fixed() {
                 continue;
             }
             let mut own = self.flags[i];
             if !body.asleep {
                 own |= AWAKE;
-                if !ready_to_sleep(body, sleep) {
+                if !ready_to_sleep(state, sleep) {
                     own |= BLOCKED;
                 }
             }
@@ -288,7 +333,7 @@ impl Sleeper {
         }
         self.new_island.clear();
         self.new_island.resize(n, 0);
-        for (i, body) in bodies.iter_mut().enumerate() {
+        for (i, (body, state)) in bodies.iter_mut().zip(&mut self.states).enumerate() {
             if body.is_fixed() {
                 continue;
             }
@@ -303,18 +348,18 @@ impl Sleeper {
             self.asleep += usize::from(!body.asleep);
             self.generation += 1;
             body.asleep = true;
-            body.island = self.new_island[root];
+            state.island = self.new_island[root];
             body.desc.velocity = DVec3::ZERO;
-            body.rest = body.desc.position;
-            body.calm = 0.0;
+            state.rest = body.desc.position;
+            state.calm = 0.0;
         }
     }
 }
 
-/// Whether awake `body` has been calm long enough to fall asleep: calm in the last step (so
+/// Whether a body awake, in `state`, has been calm long enough to fall asleep: calm in the last step (so
 /// `calm > 0`: with a sleeping time of 0, calm in that step alone), and for `sleep.time`.
-fn ready_to_sleep(body: &Body, sleep: Sleep) -> bool {
-    body.calm > 0.0 && body.calm >= sleep.time
+fn ready_to_sleep(state: &SleepState, sleep: Sleep) -> bool {
+    state.calm > 0.0 && state.calm >= sleep.time
 }
 
 /// How far apart `body` and a sphere of `radius` at `centre` are (negative when they overlap).

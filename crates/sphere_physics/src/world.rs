@@ -347,6 +347,7 @@ impl World {
         desc.validate(|| label(desc.name.as_deref(), id))?;
         self.next_id += 1;
         self.bodies.push(Body::new(id, desc));
+        self.sleeper.added();
         self.dormant.added(self.bodies.len() - 1);
         self.woken_by(self.bodies.len() - 1);
         Ok(id)
@@ -359,6 +360,7 @@ impl World {
         self.woken_by(index);
         // The bodies after it move down one place.
         self.dormant.removed(index);
+        self.sleeper.removed(index);
         Some(self.bodies.remove(index))
     }
 
@@ -382,7 +384,7 @@ impl World {
             self.sleeper.wake_island_of(&mut self.bodies, index);
             // Awake, it is calm from now on only (moved, say, near a floor it would never
             // reach before falling asleep with a calm it had gathered elsewhere).
-            self.bodies[index].calm = 0.0;
+            self.sleeper.reset(index);
         }
     }
 
@@ -413,6 +415,7 @@ impl World {
             .map_err(|e| BodyError { id: Some(id), ..e })?;
         self.woken_by(index);
         self.bodies[index] = Body::new(id, desc);
+        self.sleeper.reset(index);
         self.woken_by(index);
         Ok(())
     }
@@ -579,6 +582,7 @@ impl World {
                 && self.sleeper.asleep() > 0
                 && self.dormant.choose(
                     &self.bodies,
+                    self.sleeper.states(),
                     &self.settings,
                     sub_dt,
                     self.sleeper.generation(),

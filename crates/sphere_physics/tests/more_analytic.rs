@@ -236,3 +236,51 @@ fn a_scene_view_is_read_checked_and_kept() {
         );
     }
 }
+
+#[test]
+fn leapfrog_gives_each_sphere_its_own_kick_after_the_drift() {
+    // No gravity: the first and last spheres have no force (their kicks after the drift are
+    // zero, and the engine stores none until one is not), the middle one a constant force.
+    // Leapfrog is exact under a constant acceleration, so each sphere moves as its own force
+    // alone says; a kick landing on another sphere would show in either's velocity.
+    let settings = Settings {
+        integrator: sphere_physics::IntegratorKind::Leapfrog,
+        ..Settings::default()
+    };
+    let mut world = World::new(settings);
+    let (v_a, v_c) = (DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, 0.0, -1.0));
+    let force = DVec3::new(0.0, 2.0, 0.0);
+    let a = world.add_sphere(SphereDesc::new(0.1).moving(v_a)).unwrap();
+    let b = world
+        .add_sphere(
+            SphereDesc::new(0.1)
+                .at(DVec3::new(0.0, 10.0, 0.0))
+                .with_force(force),
+        )
+        .unwrap();
+    let c = world
+        .add_sphere(
+            SphereDesc::new(0.1)
+                .at(DVec3::new(0.0, 20.0, 0.0))
+                .moving(v_c),
+        )
+        .unwrap();
+    let (steps, dt) = (30, 1.0 / 60.0);
+    for _ in 0..steps {
+        world.step(dt).unwrap();
+    }
+    let t = f64::from(steps) * dt;
+    let (ba, bb, bc) = (
+        world.body(a).unwrap(),
+        world.body(b).unwrap(),
+        world.body(c).unwrap(),
+    );
+    assert_eq!(ba.velocity(), v_a);
+    assert_eq!(bc.velocity(), v_c);
+    assert!((ba.position() - v_a * t).length() < 1e-12);
+    assert!((bc.position() - (DVec3::new(0.0, 20.0, 0.0) + v_c * t)).length() < 1e-12);
+    let acceleration = force / bb.mass();
+    assert!((bb.velocity() - acceleration * t).length() < 1e-12);
+    let fallen = DVec3::new(0.0, 10.0, 0.0) + 0.5 * acceleration * t * t;
+    assert!((bb.position() - fallen).length() < 1e-12);
+}

@@ -566,3 +566,47 @@ fn regression_a_sphere_being_moved_out_of_a_fixed_one_does_not_sleep_there() {
         assert!(at.length() > 10.49, "gravity {gravity}: at {at}");
     }
 }
+
+#[test]
+fn removing_a_sphere_leaves_every_group_asleep_with_its_own() {
+    // A lone ball, then two pairs of touching balls far apart (two groups), all asleep. The
+    // lone ball, added first, is removed: the bodies after it move down one place, and each
+    // keeps its group. Waking one ball of the last pair wakes that pair, and only it.
+    let (mut world, _) = world_with_floor();
+    let lone = ball_at(&mut world, -20.0, 0.5);
+    let first = [ball_at(&mut world, 0.0, 0.5), ball_at(&mut world, 1.0, 0.5)];
+    let last = [
+        ball_at(&mut world, 20.0, 0.5),
+        ball_at(&mut world, 21.0, 0.5),
+    ];
+    let all = [lone, first[0], first[1], last[0], last[1]];
+    for _ in 0..600 {
+        world.step(DT).unwrap();
+        if all.iter().all(|&id| asleep(&world, id)) {
+            break;
+        }
+    }
+    assert!(all.iter().all(|&id| asleep(&world, id)), "all asleep");
+    world.remove_body(lone).unwrap();
+    assert!(first.iter().chain(&last).all(|&id| asleep(&world, id)));
+    world.wake(last[0]).unwrap();
+    assert!(
+        last.iter().all(|&id| !asleep(&world, id)),
+        "the last pair woken"
+    );
+    assert!(
+        first.iter().all(|&id| asleep(&world, id)),
+        "the first pair still asleep"
+    );
+    // And the other way round, after the last pair has fallen asleep again.
+    step_until_asleep(&mut world, last[1], 600);
+    world.wake(first[1]).unwrap();
+    assert!(
+        first.iter().all(|&id| !asleep(&world, id)),
+        "the first pair woken"
+    );
+    assert!(
+        last.iter().all(|&id| asleep(&world, id)),
+        "the last pair still asleep"
+    );
+}

@@ -356,8 +356,9 @@ impl Sleeper {
     }
 }
 
-/// Whether a body awake, in `state`, has been calm long enough to fall asleep: calm in the last step (so
-/// `calm > 0`: with a sleeping time of 0, calm in that step alone), and for `sleep.time`.
+/// Whether a body awake, in `state`, has been calm long enough to fall asleep: calm in the
+/// last step (so `calm > 0`: with a sleeping time of 0, calm in that step alone), and for
+/// `sleep.time`.
 fn ready_to_sleep(state: &SleepState, sleep: Sleep) -> bool {
     state.calm > 0.0 && state.calm >= sleep.time
 }

@@ -1,10 +1,9 @@
 //! Resources: the core world, the physics clock (pause, single step) and diagnostics.
 
-use std::collections::HashMap;
-
 use bevy::ecs::entity::EntityHashMap;
 use bevy::ecs::entity_disabling::Disabled;
 use bevy::ecs::query::Allow;
+use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use sphere_physics::{BodyId, StepStats, World};
 
@@ -23,7 +22,9 @@ pub struct SpherePhysicsWorld {
     pub world: World,
     pub(crate) bodies: EntityHashMap<BodyId>,
     /// Each body's entity (a map: body ids are never reused, so a table indexed by id would
-    /// grow with every sphere ever spawned).
+    /// grow with every sphere ever spawned). Hashed by Bevy's fixed, fast hasher rather than
+    /// the standard library's: `Prepare` looks up every sphere's at every step. (Never
+    /// iterated, so its order reaches nothing.)
     pub(crate) entities: HashMap<BodyId, Entity>,
 }
 
@@ -32,7 +33,7 @@ impl SpherePhysicsWorld {
         Self {
             world,
             bodies: EntityHashMap::default(),
-            entities: HashMap::new(),
+            entities: HashMap::default(),
         }
     }
 

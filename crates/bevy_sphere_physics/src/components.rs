@@ -142,6 +142,7 @@ pub struct RejectedSphere {
     pub(crate) desc: sphere_physics::SphereDesc,
 }
 
-/// The core body of a sphere in the simulation, put on it by the plugin (read-only for games).
+/// The core body of a sphere in the simulation, put on it by the plugin (read-only for games),
+/// and the entity it was put on (a handle cloned onto another entity is not that entity's).
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SphereHandle(pub sphere_physics::BodyId);
+pub struct SphereHandle(pub sphere_physics::BodyId, pub(crate) Entity);

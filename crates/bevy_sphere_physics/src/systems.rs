@@ -334,12 +334,12 @@ pub(crate) fn prepare(
         ($item:expr) => {{
             let item = $item;
             let entity = item.0;
-            // The handle can outlive the body for one step after the entity was removed and
-            // re-added: trust the map.
-            let id = item
-                .12
-                .map(|h| h.0)
-                .filter(|id| physics.entities.get(id) == Some(&entity));
+            // A handle is the entity's own if it was made for this entity (one copied onto
+            // another, by cloning the entity, is not); it can outlive its body for one step
+            // after the entity was removed and re-added, which `body` below finds gone.
+            // (Checked without the map of entities: a lookup there for every sphere at every
+            // step was a tenth of the plugin's time.)
+            let id = item.12.filter(|h| h.1 == entity).map(|h| h.0);
             match id.or_else(|| physics.bodies.get(&entity).copied()) {
                 Some(id) => {
                     let Some(body) = physics.world.body(id) else {
@@ -425,7 +425,7 @@ pub(crate) fn prepare(
                 e.try_insert((
                     SpherePosition(desc.position),
                     PreviousSpherePosition(desc.position),
-                    SphereHandle(id),
+                    SphereHandle(id, entity),
                 ));
                 if item.10.is_some() {
                     e.try_remove::<RejectedSphere>();

@@ -1563,3 +1563,33 @@ fn writeback_of_a_step_that_leaves_a_bed_out_keeps_every_sphere_right() {
     }
     assert!((position(&app, moved) - target).length() < 1e-3);
 }
+
+#[test]
+fn a_sphere_cloned_with_its_handle_becomes_a_sphere_of_its_own() {
+    // Cloning a sphere's entity copies its handle too: the copy is still a new sphere, with a
+    // body of its own, and the original keeps its body.
+    let mut app = app(SpherePhysicsPlugin::default());
+    let a = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::ZERO),
+            SphereVelocity(DVec3::X),
+        ))
+        .id();
+    run_steps(&mut app, 1);
+    let handle_a = app.world().get::<SphereHandle>(a).unwrap().0;
+    let b = app.world_mut().entity_mut(a).clone_and_spawn();
+    assert_eq!(app.world().get::<SphereHandle>(b).unwrap().0, handle_a);
+    // Far from the original, and moving the other way: the two never meet.
+    app.world_mut().get_mut::<SpherePosition>(b).unwrap().0 = DVec3::new(0.0, 0.0, 10.0);
+    app.world_mut().get_mut::<SphereVelocity>(b).unwrap().0 = DVec3::NEG_X;
+    run_steps(&mut app, 2);
+    let handle_b = app.world().get::<SphereHandle>(b).unwrap().0;
+    assert_ne!(handle_b, handle_a);
+    assert_eq!(app.world().get::<SphereHandle>(a).unwrap().0, handle_a);
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 2);
+    assert_eq!(velocity(&app, a).x, 1.0);
+    assert_eq!(velocity(&app, b).x, -1.0);
+    assert!(position(&app, b).z > 9.0 && position(&app, a).z.abs() < 1.0);
+}

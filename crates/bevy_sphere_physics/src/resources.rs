@@ -23,8 +23,9 @@ pub struct SpherePhysicsWorld {
     pub(crate) bodies: EntityHashMap<BodyId>,
     /// Each body's entity (a map: body ids are never reused, so a table indexed by id would
     /// grow with every sphere ever spawned). Hashed by Bevy's fixed, fast hasher rather than
-    /// the standard library's: `Prepare` looks up every sphere's at every step. (Never
-    /// iterated, so its order reaches nothing.)
+    /// the standard library's: `Notify` looks up both spheres of every collision, and until
+    /// sphere handles named their entities `Prepare` looked up every sphere at every step.
+    /// (Never iterated, so its order reaches nothing.)
     pub(crate) entities: HashMap<BodyId, Entity>,
 }
 

@@ -129,7 +129,7 @@ type SphereQuery<'a> = (
     Option<&'a Tethered>,
     Option<&'a RejectedSphere>,
     Option<&'a Name>,
-    Option<&'a SphereHandle>,
+    Option<Ref<'a, SphereHandle>>,
 );
 
 /// The description `item`'s components give. A body's state (its position and velocity) whose
@@ -334,21 +334,32 @@ pub(crate) fn prepare(
         ($item:expr) => {{
             let item = $item;
             let entity = item.0;
-            // A handle is the entity's own if it was made for this entity (one copied onto
-            // another, by cloning the entity, is not); it can outlive its body for one step
-            // after the entity was removed and re-added, which `body` below finds gone.
-            // (Checked without the map of entities: a lookup there for every sphere at every
-            // step was a tenth of the plugin's time.)
-            let id = item.12.filter(|h| h.1 == entity).map(|h| h.0);
-            match id.or_else(|| physics.bodies.get(&entity).copied()) {
+            // A handle is trusted if it was put on this entity (one copied onto another, by
+            // cloning the entity, is not) and, if it changed since the last `Prepare` (put on
+            // then, or by the game, or left by a reset that ran before a handle put on for the
+            // old world), if the map of entities agrees; an older one can outlive its body
+            // (the entity removed and re-added), which `body` below finds gone. (The map
+            // asked for every sphere at every step was a tenth of the plugin's time.)
+            let handle = item.12.as_ref().map(|h| {
+                let own = h.1 == entity
+                    && (!h.is_changed() || physics.entities.get(&h.0) == Some(&entity));
+                (h.0, own)
+            });
+            let trusted = handle.and_then(|(id, own)| own.then_some(id));
+            match trusted.or_else(|| physics.bodies.get(&entity).copied()) {
                 Some(id) => {
                     let Some(body) = physics.world.body(id) else {
-                        // Removed from the core by the game: register it anew.
+                        // Removed from the core (by the game, or by the plugin while the
+                        // entity was away): register it anew.
                         physics.bodies.remove(&entity);
                         physics.entities.remove(&id);
                         new.push(entity);
                         continue;
                     };
+                    if handle != Some((id, true)) {
+                        // A handle not its own, or none: its own put back.
+                        commands.entity(entity).try_insert(SphereHandle(id, entity));
+                    }
                     if item.3.is_none() {
                         // Its `SpherePosition` was removed: the plugin's output, put back (the
                         // body stays where the core has it).

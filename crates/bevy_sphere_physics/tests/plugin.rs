@@ -1593,3 +1593,38 @@ fn a_sphere_cloned_with_its_handle_becomes_a_sphere_of_its_own() {
     assert_eq!(velocity(&app, b).x, -1.0);
     assert!(position(&app, b).z > 9.0 && position(&app, a).z.abs() < 1.0);
 }
+
+#[test]
+fn a_sphere_given_back_an_old_handle_keeps_its_body() {
+    // A game that saved a sphere's handle and puts it back after the sphere joined the world
+    // again (here after being disabled) does not cost the sphere its body: the stale handle is
+    // refused, its own put back, and no body is left behind without an entity.
+    let mut app = app(SpherePhysicsPlugin::default());
+    let a = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            SpherePosition(DVec3::ZERO),
+            SphereVelocity(DVec3::X),
+        ))
+        .id();
+    run_steps(&mut app, 1);
+    let old = *app.world().get::<SphereHandle>(a).unwrap();
+    app.world_mut()
+        .entity_mut(a)
+        .insert(bevy::ecs::entity_disabling::Disabled);
+    run_steps(&mut app, 1);
+    app.world_mut()
+        .entity_mut(a)
+        .remove::<bevy::ecs::entity_disabling::Disabled>();
+    run_steps(&mut app, 1);
+    let current = app.world().get::<SphereHandle>(a).unwrap().0;
+    assert_ne!(current, old.0);
+    app.world_mut().entity_mut(a).insert(old);
+    run_steps(&mut app, 3);
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert_eq!(physics.world.len(), 1, "one body, the sphere's");
+    assert_eq!(physics.body(a), Some(current));
+    assert_eq!(app.world().get::<SphereHandle>(a).unwrap().0, current);
+    assert_eq!(velocity(&app, a).x, 1.0);
+}

@@ -1564,10 +1564,9 @@ fn writeback_of_a_step_that_leaves_a_bed_out_keeps_every_sphere_right() {
     assert!((position(&app, moved) - target).length() < 1e-3);
 }
 
-#[test]
-fn a_sphere_cloned_with_its_handle_becomes_a_sphere_of_its_own() {
-    // Cloning a sphere's entity copies its handle too: the copy is still a new sphere, with a
-    // body of its own, and the original keeps its body.
+/// An app with one sphere (radius 0.5) at the origin moving at 1 m/s along x, no gravity,
+/// after its first step.
+fn one_sphere_moving_along_x() -> (App, Entity) {
     let mut app = app(SpherePhysicsPlugin::default());
     let a = app
         .world_mut()
@@ -1578,6 +1577,14 @@ fn a_sphere_cloned_with_its_handle_becomes_a_sphere_of_its_own() {
         ))
         .id();
     run_steps(&mut app, 1);
+    (app, a)
+}
+
+#[test]
+fn a_sphere_cloned_with_its_handle_becomes_a_sphere_of_its_own() {
+    // Cloning a sphere's entity copies its handle too: the copy is still a new sphere, with a
+    // body of its own, and the original keeps its body.
+    let (mut app, a) = one_sphere_moving_along_x();
     let handle_a = app.world().get::<SphereHandle>(a).unwrap().0;
     let b = app.world_mut().entity_mut(a).clone_and_spawn();
     assert_eq!(app.world().get::<SphereHandle>(b).unwrap().0, handle_a);
@@ -1599,16 +1606,7 @@ fn a_sphere_given_back_an_old_handle_keeps_its_body() {
     // A game that saved a sphere's handle and puts it back after the sphere joined the world
     // again (here after being disabled) does not cost the sphere its body: the stale handle is
     // refused, its own put back, and no body is left behind without an entity.
-    let mut app = app(SpherePhysicsPlugin::default());
-    let a = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.5),
-            SpherePosition(DVec3::ZERO),
-            SphereVelocity(DVec3::X),
-        ))
-        .id();
-    run_steps(&mut app, 1);
+    let (mut app, a) = one_sphere_moving_along_x();
     let old = *app.world().get::<SphereHandle>(a).unwrap();
     app.world_mut()
         .entity_mut(a)

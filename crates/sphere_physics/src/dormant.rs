@@ -67,6 +67,10 @@ pub(crate) struct Dormant {
     /// marks by index from one step to the next (see `Solver::forget_indices`).
     last_left_out: bool,
     last: Vec<u32>,
+    /// `last_left_out` and `last` as the world's step began, if the step changed them (put
+    /// back if it is refused: see [`Dormant::refused`]).
+    before: Option<bool>,
+    last_before: Vec<u32>,
     /// The generation of the bodies asleep (see `Sleeper`) the index below was made for.
     key: Option<u64>,
     /// The bodies asleep, by their centres' x: `(x, index)`.
@@ -334,12 +338,31 @@ impl Dormant {
     pub fn same_indices(&mut self, leaves_out: bool) -> bool {
         let same = self.last_left_out == leaves_out && (!leaves_out || self.last == self.in_step);
         if !same {
+            if self.before.is_none() {
+                self.before = Some(self.last_left_out);
+                std::mem::swap(&mut self.last, &mut self.last_before);
+            }
             self.last_left_out = leaves_out;
             if leaves_out {
                 self.last.clone_from(&self.in_step);
             }
         }
         same
+    }
+
+    /// A world's step begins: what [`Dormant::same_indices`] records is kept as it stands
+    /// until the step is taken.
+    pub fn begin_step(&mut self) {
+        self.before = None;
+    }
+
+    /// The world's step was refused: puts back the last step's choice (see
+    /// [`Dormant::same_indices`]).
+    pub fn refused(&mut self) {
+        if let Some(left_out) = self.before.take() {
+            self.last_left_out = left_out;
+            std::mem::swap(&mut self.last, &mut self.last_before);
+        }
     }
 
     /// The deepest overlap of a pair with a body left out of the step and the potential

@@ -88,6 +88,23 @@ pub(crate) struct Sleeper {
     quiet: bool,
     /// Bodies asleep.
     asleep: usize,
+    /// What `before_step` changed, to be put back if the step is refused (see
+    /// [`Sleeper::refused`]).
+    before: Before,
+}
+
+/// The sleeper as it was before `before_step` woke every body.
+#[derive(Debug, Default)]
+struct Before {
+    /// Whether `before_step` woke every body (and the rest below is what was).
+    changed: bool,
+    gravity: Option<DVec3>,
+    quiet: bool,
+    asleep: usize,
+    /// The bodies asleep, by index.
+    asleep_bodies: Vec<u32>,
+    /// Each body's calm.
+    calm: Vec<f64>,
 }
 
 impl Sleeper {
@@ -113,13 +130,22 @@ impl Sleeper {
     }
 
     /// Before a step: wakes every body if sleeping is off or gravity changed. Returns whether
-    /// the step has nothing to do (see `quiet`).
+    /// the step has nothing to do (see `quiet`). If the step is then refused,
+    /// [`Sleeper::refused`] puts back what this changed.
     pub fn before_step(
         &mut self,
         bodies: &mut [Body],
         sleep: Option<Sleep>,
         gravity: DVec3,
     ) -> bool {
+        self.before.changed = false;
+        let changes = match sleep {
+            None => self.gravity.is_some(),
+            Some(_) => self.gravity != Some(gravity),
+        };
+        if changes {
+            self.keep_before(bodies);
+        }
         if sleep.is_none() {
             // Turned off (nothing can be asleep if it was never on: no scan then).
             if self.gravity.take().is_some() {
@@ -132,6 +158,41 @@ impl Sleeper {
             self.gravity = Some(gravity);
         }
         self.quiet
+    }
+
+    /// Keeps what `before_step` is about to change (see `Before`).
+    fn keep_before(&mut self, bodies: &[Body]) {
+        let before = &mut self.before;
+        before.changed = true;
+        before.gravity = self.gravity;
+        before.quiet = self.quiet;
+        before.asleep = self.asleep;
+        before.asleep_bodies.clear();
+        before
+            .asleep_bodies
+            .extend((0..bodies.len() as u32).filter(|&i| bodies[i as usize].asleep));
+        before.calm.clear();
+        before.calm.extend(self.states.iter().map(|s| s.calm));
+    }
+
+    /// The step was refused: puts back what `before_step` changed, if it woke every body
+    /// (each body asleep or calm as it was).
+    pub fn refused(&mut self, bodies: &mut [Body]) {
+        if !std::mem::take(&mut self.before.changed) {
+            return;
+        }
+        let before = &self.before;
+        self.gravity = before.gravity;
+        self.quiet = before.quiet;
+        self.asleep = before.asleep;
+        for &i in &before.asleep_bodies {
+            bodies[i as usize].asleep = true;
+        }
+        for (state, &calm) in self.states.iter_mut().zip(&before.calm) {
+            state.calm = calm;
+        }
+        // What is kept about the bodies asleep (see `generation`) is worked out again.
+        self.generation += 1;
     }
 
     /// Bodies asleep.

@@ -221,6 +221,18 @@ const SQUEEZE_CONTACTS: usize = 256;
 /// Half the largest f64: two numbers below it in size add to a finite one.
 const HALF_RANGE: f64 = f64::MAX / 2.0;
 
+/// What the solver kept from the last step taken, while a step that may yet be refused
+/// changes it (see [`Solver::begin_step`]).
+#[derive(Debug, Default)]
+struct Before {
+    /// [`Solver::rested`] as it was, if `rested_kept`.
+    rested: Vec<u64>,
+    /// [`Solver::warm`] as it was, if `warm_kept`.
+    warm: WarmLoads,
+    rested_kept: bool,
+    warm_kept: bool,
+}
+
 /// Scratch space for stepping, kept between steps so a warmed-up step does not allocate.
 #[derive(Debug, Default)]
 pub(crate) struct Solver {
@@ -350,6 +362,9 @@ pub(crate) struct Solver {
     warm: WarmLoads,
     /// Scratch: the loads for the next warm start, as the solve leaves them.
     next_warm: Vec<(crate::BodyId, crate::BodyId, f64)>,
+    /// What [`Solver::rested`] and [`Solver::warm`] held when the world's step began, kept for
+    /// a step that is refused (see [`Solver::begin_step`]).
+    before: Before,
     /// Solver index `p` is body index `order[p]` (the broad phase's spatial order).
     order: Vec<u32>,
     /// Body `i` is solver index `position_of[i]` (the inverse of `order`).
@@ -865,7 +880,9 @@ impl Solver {
                 self.requery_touched(0.0, ctx, stats);
             }
         } else {
+            self.keep_warm_before();
             self.warm.clear();
+            self.keep_rested_before();
             self.rested.clear();
         }
         laps.lap(&mut self.profile.resting);
@@ -1798,7 +1815,47 @@ impl Solver {
     /// Forgets what the solver keeps from one step to the next by body index (which bodies
     /// rested): a body was removed, and the indices after it moved down by one.
     pub fn forget_indices(&mut self) {
+        self.keep_rested_before();
         self.rested.clear();
+    }
+
+    /// A world's step begins (before its first substep): what the solver keeps from one step
+    /// to the next for the step after it (the bodies that rested, the warm start) is kept as
+    /// it stands until the step is taken, to be put back by [`Solver::refused`] if it is not.
+    /// Each is swapped out whole at its first change in the step (no copy).
+    pub fn begin_step(&mut self) {
+        self.before.rested_kept = false;
+        self.before.warm_kept = false;
+    }
+
+    /// The world's step was refused: puts back what the solver kept from the last step taken
+    /// (see [`Solver::begin_step`]), so that the next step starts as if this one had never
+    /// been tried.
+    pub fn refused(&mut self) {
+        if std::mem::take(&mut self.before.rested_kept) {
+            std::mem::swap(&mut self.rested, &mut self.before.rested);
+        }
+        if std::mem::take(&mut self.before.warm_kept) {
+            std::mem::swap(&mut self.warm, &mut self.before.warm);
+        }
+    }
+
+    /// Before [`Solver::rested`] first changes in a step: keeps it as it was (see
+    /// [`Solver::begin_step`]); what is left in its place is to be cleared.
+    pub(super) fn keep_rested_before(&mut self) {
+        if !self.before.rested_kept {
+            self.before.rested_kept = true;
+            std::mem::swap(&mut self.rested, &mut self.before.rested);
+        }
+    }
+
+    /// Before [`Solver::warm`] first changes in a step: keeps it as it was (see
+    /// [`Solver::begin_step`]); what is left in its place is to be emptied or started.
+    pub(super) fn keep_warm_before(&mut self) {
+        if !self.before.warm_kept {
+            self.before.warm_kept = true;
+            std::mem::swap(&mut self.warm, &mut self.before.warm);
+        }
     }
 
     /// The largest overlap between bodies (at least one dynamic), 0 if none.

@@ -562,6 +562,9 @@ impl World {
             });
         }
         let (sleep, gravity) = (self.settings.sleep, self.settings.gravity);
+        // From here a step refused part-way puts back what it changed (see `refused` below).
+        self.solver.begin_step();
+        self.dormant.begin_step();
         if self.sleeper.before_step(&mut self.bodies, sleep, gravity) {
             self.quiet_step(dt);
             return Ok(&self.stats);
@@ -673,11 +676,16 @@ impl World {
             };
             if let Err(index) = result {
                 // The refused substep wrote nothing back; undo the substeps before it, and
-                // drop the step's records.
+                // drop the step's records. What the step changed for the steps after it (each
+                // body's sleep, the solver's warm start and marks) is put back too: the next
+                // step is as if this one had never been tried.
                 for (body, &(position, velocity)) in self.bodies.iter_mut().zip(&self.rollback) {
                     body.desc.position = position;
                     body.desc.velocity = velocity;
                 }
+                self.sleeper.refused(&mut self.bodies);
+                self.solver.refused();
+                self.dormant.refused();
                 let body = &self.bodies[index];
                 return Err(WorldError::Body(BodyError {
                     body: label(body.desc.name.as_deref(), body.id),

@@ -1274,6 +1274,7 @@ impl Solver {
         let resting = std::mem::take(&mut self.resting);
         self.next_warm.clear();
         self.loads_unplaced.clear();
+        self.keep_rested_before();
         self.rested.clear();
         self.rested.resize(self.order.len().div_ceil(64), 0);
         for (n, c) in resting.iter().enumerate().filter(|(_, c)| c.impulse > 0.0) {
@@ -1299,6 +1300,7 @@ impl Solver {
                 }
             }
         }
+        self.keep_warm_before();
         self.warm.start(self.next_warm.len());
         for (n, &(a, b, load)) in self.next_warm.iter().enumerate() {
             if let Some(&(a, b, _)) = self.next_warm.get(n + SWEEP_AHEAD) {

@@ -270,6 +270,8 @@ impl Sleeper {
         }
         self.wake_islands(bodies);
         let before = self.asleep;
+        // A check set for a longer `sleep.time` than now is brought nearer.
+        self.next_check = self.next_check.min(now + sleep.time / 4.0);
         if ready && now >= self.next_check {
             // Forming the groups reads every body: done at most four times per `sleep.time`
             // (a group may fall asleep up to a quarter of it late).

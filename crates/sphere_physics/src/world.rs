@@ -236,8 +236,9 @@ pub enum WorldError {
     /// No body has this id (never added, or removed).
     #[error("no body {0}")]
     UnknownBody(BodyId),
-    /// The time step is not finite and > 0 (or is subnormal: dividing by it overflows).
-    #[error("time step must be finite, normal and > 0, got {0}")]
+    /// The time step is not finite and > 0 (or is subnormal: dividing by it overflows), or
+    /// would take the world's clock ([`World::time`]) past the largest finite time.
+    #[error("time step must be finite, normal and > 0, and keep the clock finite, got {0}")]
     InvalidTimeStep(f64),
     /// A field of [`Settings`] is invalid (see [`Settings::validate`]).
     #[error("settings: {field} {reason}, got {value}")]
@@ -542,7 +543,7 @@ impl World {
     /// (within the caps), and where nothing accelerates the pair's centre of mass is then not
     /// kept. [`StepStats::separated`] counts the spheres moved.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
-        if !(dt.is_normal() && dt > 0.0) {
+        if !(dt.is_normal() && dt > 0.0 && (self.time + dt).is_finite()) {
             return Err(WorldError::InvalidTimeStep(dt));
         }
         self.settings.validate()?;

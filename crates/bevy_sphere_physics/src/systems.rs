@@ -434,10 +434,14 @@ pub(crate) fn prepare(
                 physics.entities.insert(id, entity);
                 let mut e = commands.entity(entity);
                 e.try_insert((
-                    SpherePosition(desc.position),
                     PreviousSpherePosition(desc.position),
                     SphereHandle(id, entity),
                 ));
+                if item.3.is_none() {
+                    // Placed by its `Transform`. (One it has is left as it is: put on again
+                    // here, it would overwrite a game's change made after `Prepare`.)
+                    e.try_insert(SpherePosition(desc.position));
+                }
                 if item.10.is_some() {
                     e.try_remove::<RejectedSphere>();
                 }
@@ -542,7 +546,7 @@ pub(crate) fn writeback(
     mut still: Local<bool>,
     mut written: Local<Written>,
     mut spheres: Query<(
-        Ref<SphereHandle>,
+        &SphereHandle,
         &mut SpherePosition,
         &mut PreviousSpherePosition,
         Option<&mut SphereVelocity>,
@@ -564,8 +568,8 @@ pub(crate) fn writeback(
     // Changed after `Prepare` ran: by a game system that it did not see (one with no order
     // against the plugin's sets may run between them). Such a velocity or position is left as
     // the game set it, for the next `Prepare` to apply, not overwritten with the step's
-    // result; a position `Prepare` itself put there is not the game's (a sphere that joined,
-    // its handle put on with it, or one whose position was removed, put back).
+    // result; a position `Prepare` itself put there is not the game's (a sphere that joined
+    // by its `Transform`, or one whose position was removed, put back).
     let late = |tick: Tick| tick.is_newer_than(prepared.0, ticks.this_run());
     let mut wrote = !compare;
     // A step that left out the spheres asleep beyond the reach of what moves (see
@@ -579,14 +583,9 @@ pub(crate) fn writeback(
     {
         let mut last = std::mem::take(&mut written.entities);
         for &entity in &last {
-            if let Ok((handle, position, mut previous, _)) = spheres.get_mut(entity)
+            if let Ok((_, position, mut previous, _)) = spheres.get_mut(entity)
                 && !same_bits(previous.0, position.0)
-                && !moved_late(
-                    late,
-                    position.last_changed(),
-                    position.added(),
-                    handle.last_changed(),
-                )
+                && !moved_late(late, position.last_changed(), position.added())
             {
                 previous.0 = position.0;
                 wrote = true;
@@ -600,16 +599,11 @@ pub(crate) fn writeback(
             let Some(body) = physics.world.body(*id) else {
                 continue;
             };
-            let Ok((handle, position, previous, velocity)) = spheres.get_mut(entity) else {
+            let Ok((_, position, previous, velocity)) = spheres.get_mut(entity) else {
                 continue;
             };
-            let (changed, moved) = write_sphere(
-                body,
-                (handle, position, previous, velocity),
-                true,
-                true,
-                late,
-            );
+            let (changed, moved) =
+                write_sphere(body, (position, previous, velocity), true, true, late);
             wrote |= changed;
             if moved {
                 last.push(entity);
@@ -629,7 +623,7 @@ pub(crate) fn writeback(
         let id = handle.0;
         let (changed, moved) = write_sphere(
             body,
-            (handle, position, previous, velocity),
+            (position, previous, velocity),
             compare,
             stepped.0,
             late,
@@ -650,11 +644,14 @@ pub(crate) fn writeback(
 }
 
 /// Whether a sphere's position was changed `late` by the game (see `writeback`), from the
-/// ticks it was changed and added at and its handle's last change: not when `Prepare` put
-/// it there, with the sphere's handle or as the component came back.
+/// ticks it was changed and added at: not when `Prepare` put it there, as a sphere joined by
+/// its `Transform` or as the component came back. (`Prepare` changes a position it did not
+/// add only in its own run, not late. Until the fifty-fifth session it put the position on
+/// again with a joining sphere's handle, and took any change late in that step for its own,
+/// overwriting a game's.)
 #[inline(always)]
-fn moved_late(late: impl Fn(Tick) -> bool, changed: Tick, added: Tick, handle: Tick) -> bool {
-    late(changed) && !late(added) && !late(handle)
+fn moved_late(late: impl Fn(Tick) -> bool, changed: Tick, added: Tick) -> bool {
+    late(changed) && !late(added)
 }
 
 /// What `writeback` keeps from one run to the next: the spheres whose position it wrote
@@ -674,8 +671,7 @@ pub(crate) struct Written {
 #[inline(always)]
 fn write_sphere(
     body: &Body,
-    (handle, mut position, mut previous, velocity): (
-        Ref<SphereHandle>,
+    (mut position, mut previous, velocity): (
         Mut<SpherePosition>,
         Mut<PreviousSpherePosition>,
         Option<Mut<SphereVelocity>>,
@@ -695,12 +691,7 @@ fn write_sphere(
             wrote = true;
         }
     }
-    if moved_late(
-        &late,
-        position.last_changed(),
-        position.added(),
-        handle.last_changed(),
-    ) {
+    if moved_late(&late, position.last_changed(), position.added()) {
         return (true, false);
     }
     if !compare {

@@ -1435,6 +1435,63 @@ fn regression_a_change_made_after_prepare_is_kept_for_the_next_step() {
     }
 }
 
+/// Moves a sphere to a place once, after `Prepare` and before `Writeback` (as a game system
+/// with no order against the plugin's sets may).
+#[derive(Resource)]
+struct LateMove {
+    moved: Entity,
+    target: DVec3,
+    done: bool,
+}
+
+fn move_late(app: &mut App, moved: Entity, target: DVec3) {
+    app.insert_resource(LateMove {
+        moved,
+        target,
+        done: false,
+    })
+    .add_systems(
+        FixedUpdate,
+        (|mut late: ResMut<LateMove>, mut positions: Query<&mut SpherePosition>| {
+            if !late.done {
+                late.done = true;
+                positions.get_mut(late.moved).unwrap().0 = late.target;
+            }
+        })
+        .after(SpherePhysicsSystems::Prepare)
+        .before(SpherePhysicsSystems::Writeback),
+    );
+}
+
+/// Regression (found by review): a position a game set after `Prepare` was overwritten with
+/// the step's result, and lost, in the step in which `Prepare` gave the sphere its handle (it
+/// joined, or had lost its handle): any change after the handle was put on was taken for
+/// `Prepare`'s own. It is kept, and applied at the next step, as in any other step.
+#[test]
+fn regression_a_position_set_late_is_kept_in_the_step_a_sphere_gets_its_handle() {
+    for joins in [true, false] {
+        let mut app = app(SpherePhysicsPlugin::default());
+        let ball = ball(&mut app, DVec3::ZERO, DVec3::X);
+        if !joins {
+            run_steps(&mut app, 3);
+            app.world_mut().entity_mut(ball).remove::<SphereHandle>();
+        }
+        let target = DVec3::new(0.0, 5.0, 0.0);
+        move_late(&mut app, ball, target);
+        run_steps(&mut app, 1);
+        assert!(app.world().get::<SphereHandle>(ball).is_some());
+        assert_eq!(position(&app, ball), target, "joins {joins}");
+        // Applied at the next step: it moves on from there.
+        run_steps(&mut app, 1);
+        let dt = STEP.as_secs_f64();
+        assert_eq!(
+            position(&app, ball),
+            target + DVec3::X * dt,
+            "joins {joins}"
+        );
+    }
+}
+
 /// Regression (found by review): while any sphere slept, a sphere rejected when it joined
 /// (placed by its `Transform` beyond its string) was not retried when a game moved its
 /// `Transform` to a valid place: `Prepare` looked only at spheres whose physics components

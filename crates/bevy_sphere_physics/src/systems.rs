@@ -63,6 +63,7 @@ pub(crate) fn record_part_removal(
         Remove,
         (
             SpherePosition,
+            PreviousSpherePosition,
             SphereVelocity,
             Density,
             Restitution,
@@ -130,6 +131,7 @@ type SphereQuery<'a> = (
     Option<&'a RejectedSphere>,
     Option<&'a Name>,
     Option<Ref<'a, SphereHandle>>,
+    Has<PreviousSpherePosition>,
 );
 
 /// The description `item`'s components give. A body's state (its position and velocity) whose
@@ -149,6 +151,7 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions, current: Option<&Bo
         tether,
         _,
         name,
+        _,
         _,
     ) = item;
     let tether = tether.map(|t| Tether {
@@ -199,7 +202,7 @@ type SphereQueryItem<'a> = <SphereQuery<'a> as bevy::ecs::query::QueryData>::Ite
 /// Whether the body still matches its components (exactly: the plugin writes the core's own
 /// values back, so any difference is a change made by the game).
 fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
-    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _) = item;
+    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _, _) = item;
     position.is_none_or(|p| p.0 == body.position())
         && velocity.is_none_or(|v| v.0 == body.velocity())
         && force.map_or(DVec3::ZERO, |f| f.0) == body.force()
@@ -209,7 +212,7 @@ fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool
 /// Whether the body's radius, density, restitution, fixedness and string still match its
 /// components: if so, only its position, velocity or force can have changed.
 fn same_shape(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
-    let (_, sphere, _, _, _, density, restitution, _, fixed, tether, _, _, _) = item;
+    let (_, sphere, _, _, _, density, restitution, _, fixed, tether, _, _, _, _) = item;
     sphere.radius == body.radius()
         && density.copied().unwrap_or_default().0 == body.density()
         && restitution.map_or(options.restitution, |r| r.0) == body.restitution()
@@ -221,7 +224,7 @@ fn same_shape(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> b
 /// the core one by one, with no new description (and no name formatted for it). `false` if
 /// one is refused: the caller then rebuilds the whole description, which reports it.
 fn steer(world: &mut sphere_physics::World, id: BodyId, item: &SphereQueryItem) -> bool {
-    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _) = item;
+    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _, _) = item;
     let Some(body) = world.body(id) else {
         return false;
     };
@@ -360,13 +363,23 @@ pub(crate) fn prepare(
                         // A handle not its own, or none: its own put back.
                         commands.entity(entity).try_insert(SphereHandle(id, entity));
                     }
-                    if item.3.is_none() {
+                    match item.3 {
                         // Its `SpherePosition` was removed: the plugin's output, put back (the
                         // body stays where the core has it).
-                        commands.entity(entity).try_insert((
-                            SpherePosition(body.position()),
-                            PreviousSpherePosition(body.position()),
-                        ));
+                        None => {
+                            commands.entity(entity).try_insert((
+                                SpherePosition(body.position()),
+                                PreviousSpherePosition(body.position()),
+                            ));
+                        }
+                        // Its `PreviousSpherePosition` was removed: put back (at its position,
+                        // so it is not shown sliding there).
+                        Some(position) if !item.13 => {
+                            commands
+                                .entity(entity)
+                                .try_insert(PreviousSpherePosition(position.0));
+                        }
+                        Some(_) => {}
                     }
                     if matches(body, &item, &options) {
                         continue;

@@ -1492,6 +1492,42 @@ fn regression_a_position_set_late_is_kept_in_the_step_a_sphere_gets_its_handle()
     }
 }
 
+/// Regression (found by review): a sphere whose `PreviousSpherePosition` a game removed (a
+/// component it is spawned with) was no longer written back, nor shown, and at every step its
+/// body was put back where its stale components said, so it stood still. The component is now
+/// put back, as a removed `SpherePosition` is.
+#[test]
+fn regression_a_removed_previous_position_is_put_back() {
+    for sleeping in [false, true] {
+        let mut app = app(if sleeping {
+            sleeping_under_gravity()
+        } else {
+            SpherePhysicsPlugin::default()
+        });
+        if sleeping {
+            ball_on_a_floor(&mut app);
+        }
+        // Thrown along x, high above anything: x grows by a step's 1/64 m each step.
+        let thrown = ball(&mut app, DVec3::new(5.0, 50.0, 0.0), DVec3::X);
+        run_steps(&mut app, 90);
+        assert_eq!(asleep(&app), u32::from(sleeping));
+        let x = position(&app, thrown).x;
+        app.world_mut()
+            .entity_mut(thrown)
+            .remove::<PreviousSpherePosition>();
+        run_steps(&mut app, 4);
+        let dt = STEP.as_secs_f64();
+        assert_eq!(
+            position(&app, thrown).x,
+            x + 4.0 * dt,
+            "sleeping {sleeping}"
+        );
+        assert!(app.world().get::<PreviousSpherePosition>(thrown).is_some());
+        let shown = app.world().get::<Transform>(thrown).unwrap().translation;
+        assert_eq!(shown.x, (x + 3.0 * dt) as f32, "sleeping {sleeping}");
+    }
+}
+
 /// Regression (found by review): while any sphere slept, a sphere rejected when it joined
 /// (placed by its `Transform` beyond its string) was not retried when a game moved its
 /// `Transform` to a valid place: `Prepare` looked only at spheres whose physics components

@@ -330,6 +330,10 @@ pub(crate) fn prepare(
     };
     // New spheres by `SphereOrder`, then entity: ids never depend on query order.
     let mut new = Vec::new();
+    // Spheres rejected by this run as they were changed: not looked at again in it (a sphere
+    // both changed and listed for a removal would be taken as new the second time, its
+    // handle's removal not yet applied, and reported twice).
+    let mut rejected_now: Vec<Entity> = Vec::new();
     // What is done for each sphere looked at, in either scan (a macro: as a closure called
     // for each, or with the two scans chained into one loop, a scene of 3000 moving spheres
     // took 15% and 75% longer).
@@ -337,6 +341,9 @@ pub(crate) fn prepare(
         ($item:expr) => {{
             let item = $item;
             let entity = item.0;
+            if rejected_now.contains(&entity) {
+                continue;
+            }
             // A handle is trusted if it was put on this entity (one copied onto another, by
             // cloning the entity, is not) and, if it changed since the last `Prepare` (put on
             // then, or by the game, or left by a reset that ran before a handle put on for the
@@ -390,6 +397,8 @@ pub(crate) fn prepare(
                     let Some(body) = physics.world.body(id) else {
                         continue;
                     };
+                    // Where a removed `SpherePosition` is put back (above): what a retry reads.
+                    let put_back = item.3.is_none().then(|| body.position());
                     let desc = describe(&item, &options, Some(body));
                     if let Err(error) = physics.world.set_desc(id, desc.clone()) {
                         physics.world.remove_body(id);
@@ -398,14 +407,14 @@ pub(crate) fn prepare(
                         commands.entity(entity).try_remove::<SphereHandle>();
                         if let sphere_physics::WorldError::Body(error) = error {
                             // Kept as the retry below describes it (with no body to take a
-                            // missing state from), so that only a change of its components
-                            // retries it.
-                            reject(
-                                &mut commands,
-                                entity,
-                                describe(&item, &options, None),
-                                error,
-                            );
+                            // missing state from, and the position put back), so that only a
+                            // change of its components retries it.
+                            let mut retried = describe(&item, &options, None);
+                            if let Some(position) = put_back {
+                                retried.position = position;
+                            }
+                            reject(&mut commands, entity, retried, error);
+                            rejected_now.push(entity);
                         }
                     }
                 }

@@ -1492,6 +1492,48 @@ fn regression_a_position_set_late_is_kept_in_the_step_a_sphere_gets_its_handle()
     }
 }
 
+/// Regression (found by review): an invalid change made together with a component's removal
+/// was reported twice. With a sphere asleep (so that `Prepare` looks only at the spheres that
+/// changed, and at those that lost a component), a sphere in both lists was rejected, then
+/// taken for a new sphere and rejected again. And a sphere whose `SpherePosition` was removed
+/// kept a rejection placed by its `Transform`, while the position put back said otherwise: it
+/// was retried, and rejected again, at the next step.
+#[test]
+fn regression_an_invalid_change_with_a_removal_is_rejected_once() {
+    for (sleeping, removes_position) in [(true, false), (false, true), (true, true)] {
+        let label = format!("sleeping {sleeping}, removes its position {removes_position}");
+        let mut app = app(if sleeping {
+            sleeping_under_gravity()
+        } else {
+            SpherePhysicsPlugin::default()
+        });
+        collect_rejections(&mut app);
+        ball_on_a_floor(&mut app);
+        let thrown = ball(&mut app, DVec3::new(5.0, 50.0, 0.0), DVec3::X);
+        run_steps(&mut app, 90);
+        assert_eq!(asleep(&app), u32::from(sleeping), "{label}");
+        let mut e = app.world_mut().entity_mut(thrown);
+        if removes_position {
+            e.remove::<SpherePosition>();
+        } else {
+            e.remove::<SphereVelocity>();
+        }
+        e.get_mut::<SphereBody>().unwrap().radius = -1.0;
+        run_steps(&mut app, 4);
+        let seen = &app.world().resource::<Rejections>().0;
+        assert_eq!(seen.len(), 1, "{label}: {seen:?}");
+        assert_eq!(seen[0].error.field, Field::Radius, "{label}");
+        // Fixed: it joins again, once.
+        app.world_mut()
+            .get_mut::<SphereBody>(thrown)
+            .unwrap()
+            .radius = 0.5;
+        run_steps(&mut app, 1);
+        assert!(app.world().get::<SphereHandle>(thrown).is_some(), "{label}");
+        assert_eq!(app.world().resource::<Rejections>().0.len(), 1, "{label}");
+    }
+}
+
 /// Regression (found by review): a sphere whose `PreviousSpherePosition` a game removed (a
 /// component it is spawned with) was no longer written back, nor shown, and at every step its
 /// body was put back where its stale components said, so it stood still. The component is now

@@ -14,7 +14,10 @@
 //!   step; collisions already reported stay reported. An entity kept without its
 //!   `SphereBody` gets its `Transform` back: the plugin stops writing it.
 //! - **Disable a sphere** (Bevy's `Disabled`): it leaves the simulation at the next fixed step
-//!   and joins again, from where it was, once enabled.
+//!   and joins again, from where it was, once enabled. Only `Disabled` does this; a disabling
+//!   component of the game's own (`World::register_disabling_component`) is not supported: it
+//!   hides the sphere from the plugin, but its body stays in the simulation (struck, and not
+//!   reported). Despawn the sphere, or remove its `SphereBody`, to take it out.
 //! - **Remove a component a sphere was spawned with**: [`Density`] or [`AppliedForce`] then
 //!   mean their defaults (density 1, no force); without [`SphereVelocity`] or
 //!   [`SpherePosition`] the sphere keeps moving as the core has it (a removed `SpherePosition`

@@ -205,7 +205,11 @@ impl SphereDesc {
                 ));
             }
             let distance = (self.position - tether.anchor).length();
-            if distance > tether.length * (1.0 + 1e-9) {
+            // A billionth of the length, and the rounding of coordinates as far out as these
+            // (the world puts a sphere back on its string at `anchor + normal · length`,
+            // rounded there: a string of a centimetre a kilometre out failed a billionth).
+            let far = self.position.abs().max(tether.anchor.abs()).max_element();
+            if distance > tether.length * (1.0 + 1e-9) + 4.0 * f64::EPSILON * far {
                 return Err(err(
                     Field::Tether,
                     distance,

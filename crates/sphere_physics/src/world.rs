@@ -514,13 +514,15 @@ impl World {
     }
 
     /// Advances the world by `dt`. On an invalid `dt` (or one the settings' substeps would cut
-    /// into subnormal substeps) or invalid settings (see [`Settings::validate`]) nothing
-    /// changes. A sphere whose position or velocity would leave the finite range within the
-    /// step (an absurd `dt` or speed, or the impulse of a kinematic sphere moving near the
-    /// largest finite speed) is an error naming it; the step stops before the substep that
-    /// would overflow, so no state turns infinite or NaN. A step refused for any of these
-    /// changes nothing: the bodies, the clock, [`World::stats`], [`World::collisions`] and
-    /// [`World::profile`] still tell of the last step taken.
+    /// into subnormal substeps, or that would take the clock past the largest finite time) or
+    /// invalid settings (see [`Settings::validate`]) nothing changes. A sphere whose position
+    /// or velocity would leave the finite range within the step (an absurd `dt` or speed, or
+    /// the impulse of a kinematic sphere moving near the largest finite speed) is an error
+    /// naming it; the step stops before the substep that would overflow, so no state turns
+    /// infinite or NaN. A step refused for any of these changes nothing: the bodies (asleep or
+    /// not), the clock, [`World::stats`], [`World::collisions`] and [`World::profile`] still
+    /// tell of the last step taken, and the steps after it are those of a world that never
+    /// tried it, bit for bit.
     ///
     /// Overlaps are undone without giving speed. Under any acceleration (gravity, or an applied
     /// force on a sphere that is not fixed) the resting solve pushes overlapping spheres apart

@@ -3,6 +3,7 @@
 //! Exit codes: 0 success; 2 bad input (usage, scene file, invalid sphere), with one line on
 //! standard error and no JSON written; 1 when writing the output fails.
 
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use sphere_physics::{SceneDesc, SceneError};
@@ -29,6 +30,24 @@ fn io_failure(message: impl ToString) -> Failure {
         code: 1,
         message: message.to_string(),
     }
+}
+
+/// Whether two paths name the same file, whether or not it exists yet: each is resolved as far
+/// as it exists (the file, or else its folder and its name in it). A path whose folder does
+/// not exist names no file this run could write.
+fn same_file(a: &Path, b: &Path) -> bool {
+    fn resolve(path: &Path) -> Option<PathBuf> {
+        if let Ok(full) = path.canonicalize() {
+            return Some(full);
+        }
+        let name = path.file_name()?;
+        let folder = match path.parent() {
+            Some(folder) if !folder.as_os_str().is_empty() => folder,
+            _ => Path::new("."),
+        };
+        Some(folder.canonicalize().ok()?.join(name))
+    }
+    a == b || resolve(a).is_some_and(|a| resolve(b) == Some(a))
 }
 
 fn main() -> ExitCode {
@@ -62,8 +81,18 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            // One line, whatever the message holds.
-            let line = failure.message.replace('\n', " ");
+            // One line, whatever the message holds: a line break is a space, and any other
+            // control character (a carriage return in a sphere's name would overwrite the line
+            // on a terminal) is written as its escape.
+            let line: String = failure
+                .message
+                .chars()
+                .map(|c| match c {
+                    '\n' => " ".to_string(),
+                    c if c.is_control() => c.escape_default().to_string(),
+                    c => c.to_string(),
+                })
+                .collect();
             eprintln!("sphere-sim: error: {line}");
             ExitCode::from(failure.code)
         }
@@ -97,10 +126,7 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         ("--trace", trace, scene_file, "is the scene file itself"),
     ] {
         if let (Some(a), Some(b)) = (file, other)
-            && (a == b
-                || a.canonicalize()
-                    .ok()
-                    .is_some_and(|a| b.canonicalize().ok() == Some(a)))
+            && same_file(a, b)
         {
             return Err(bad_input(format!("{flag} {}: {what}", a.display())));
         }

@@ -642,6 +642,41 @@ fn regression_runner_review() {
         std::fs::read_to_string(&scene).unwrap(),
         "the scene file is untouched"
     );
+    // Regression (found by review): the same file spelled two ways was caught only once it
+    // existed (the run then overwrote its trace with the report, and succeeded).
+    let fresh = scratch("review_fresh.jsonl");
+    let _ = std::fs::remove_file(&fresh);
+    let dir = fresh.parent().unwrap();
+    let spelled = dir
+        .join("..")
+        .join(dir.file_name().unwrap())
+        .join("review_fresh.jsonl");
+    assert_bad_input(
+        &[
+            "run",
+            copy_arg,
+            "--duration",
+            "1",
+            "-o",
+            fresh.to_str().unwrap(),
+            "--trace",
+            spelled.to_str().unwrap(),
+        ],
+        &["--trace file too"],
+    );
+    assert!(!fresh.exists(), "nothing written");
+    // Regression (found by review): a carriage return in a sphere's name reached the error
+    // line as it was (on a terminal, what follows it overwrites the line).
+    let named = write_scene(
+        "review_return.ron",
+        r#"(name: "n", spheres: [
+            (name: "ok\rsphere-sim: all fine", position: (0.0, 0.0, 0.0), radius: -1.0)])"#,
+    );
+    let out = sim(&["run", named.to_str().unwrap(), "--duration", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(!err.contains('\r'), "{err:?}");
+    assert!(err.contains("ok\\rsphere-sim: all fine"), "{err:?}");
     // Two gases' walls share names; each body carries its index.
     let gases = write_scene(
         "review_two_gases.ron",

@@ -273,6 +273,18 @@ impl Prepared {
             },
             other => other,
         })?;
+        // Each step's substeps (the full steps', and the last shorter one's) must be normal
+        // numbers, as the world checks at each step: checked here, before the run starts.
+        let substeps = world.settings().substeps;
+        for step in [dt, plan.last].into_iter().filter(|&step| step > 0.0) {
+            if !(step / f64::from(substeps)).is_normal() {
+                return Err(PlayError::World(WorldError::InvalidSetting {
+                    field: "substeps",
+                    value: format!("{substeps}"),
+                    reason: "must leave each substep of this time step a normal number",
+                }));
+            }
+        }
         Ok(Self {
             world,
             scene: scene.name.clone(),

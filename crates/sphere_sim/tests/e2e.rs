@@ -677,6 +677,29 @@ fn regression_runner_review() {
     let err = String::from_utf8(out.stderr).unwrap();
     assert!(!err.contains('\r'), "{err:?}");
     assert!(err.contains("ok\\rsphere-sim: all fine"), "{err:?}");
+    // Regression (found by review): a step too short for the scene's substeps was found only
+    // at the first step, after the trace file had been made, and the error did not name the
+    // scene file.
+    let fine = write_scene(
+        "review_fine.ron",
+        "(name: \"n\", substeps: 65536, spheres: [(position: (0.0, 0.0, 0.0), radius: 1.0)])",
+    );
+    let fine_trace = scratch("review_fine.csv");
+    let _ = std::fs::remove_file(&fine_trace);
+    assert_bad_input(
+        &[
+            "run",
+            fine.to_str().unwrap(),
+            "--duration",
+            "1e-305",
+            "--dt",
+            "1e-305",
+            "--trace",
+            fine_trace.to_str().unwrap(),
+        ],
+        &[fine.to_str().unwrap(), "substeps"],
+    );
+    assert!(!fine_trace.exists(), "no trace made");
     // Two gases' walls share names; each body carries its index.
     let gases = write_scene(
         "review_two_gases.ron",

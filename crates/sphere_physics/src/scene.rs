@@ -158,7 +158,10 @@ impl SceneDesc {
     }
 
     /// Parses a scene from RON text. `name: "a"` is accepted for optional fields (no `Some(..)`).
+    /// A byte-order mark at the start (which some editors write) is skipped, and lines and
+    /// columns counted after it, as the editor shows them.
     pub fn from_ron(text: &str) -> Result<Self, SceneError> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         Self::ron_options()
             .from_str(text)
             .map_err(|e: ron::error::SpannedError| SceneError::Parse {

@@ -292,7 +292,7 @@ impl fmt::Display for Field {
 
 /// An invalid body: which one, which field, the offending value and why.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("sphere {body}: {field} {reason}, got {value}")]
+#[error("sphere {body}: {field} {reason}, got {}", crate::Readable(*.value))]
 pub struct BodyError {
     /// The body: `'name' (#id)` if it has a name, else `#id`, with its [`BodyId`] (for a sphere
     /// being added, the id it would get: in a scene built into a new world, its index in the

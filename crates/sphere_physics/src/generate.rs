@@ -279,8 +279,9 @@ impl Checked {
                 return Err(self.err(
                     field,
                     format!(
-                        "is too far from the origin for spheres of radius {radius}: positions \
+                        "is too far from the origin for spheres of radius {}: positions \
                          {far:e} from it are resolved only to {:e}",
+                        crate::Readable(radius),
                         far * f64::EPSILON
                     ),
                 ));
@@ -450,8 +451,9 @@ impl Generator {
                         return Err(check.err(
                             "wall_radius",
                             format!(
-                                "is too large for spheres of radius {radius}: the walls' centres, \
+                                "is too large for spheres of radius {}: the walls' centres, \
                                  {far:e} from the origin, are resolved only to {:e}",
+                                crate::Readable(radius),
                                 far * f64::EPSILON
                             ),
                         ));

@@ -52,6 +52,7 @@ pub mod generate;
 mod instant;
 pub mod integrator;
 mod queue;
+pub mod readable;
 pub mod response;
 pub mod scene;
 pub mod sleep;
@@ -65,6 +66,7 @@ pub use body::{Body, BodyError, BodyId, Field, MAX_MASS, MAX_RADIUS, SphereDesc,
 pub use contact::{ContactKind, Kinematics, classify};
 pub use glam;
 pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};
+pub use readable::Readable;
 pub use response::{CombineRule, GroupContact, Resolution, resolve, resolve_simultaneous};
 pub use scene::{SceneDesc, SceneError, SphereSpec};
 pub use sleep::Sleep;

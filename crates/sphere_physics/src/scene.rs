@@ -141,7 +141,7 @@ pub enum SceneError {
     #[error("scene {0}")]
     Settings(WorldError),
     /// A scene-wide setting is invalid.
-    #[error("scene {field} {reason}, got {value}")]
+    #[error("scene {field} {reason}, got {}", crate::Readable(*.value))]
     Setting {
         /// The field.
         field: &'static str,

@@ -238,7 +238,10 @@ pub enum WorldError {
     UnknownBody(BodyId),
     /// The time step is not finite and > 0 (or is subnormal: dividing by it overflows), or
     /// would take the world's clock ([`World::time`]) past the largest finite time.
-    #[error("time step must be finite, normal and > 0, and keep the clock finite, got {0}")]
+    #[error(
+        "time step must be finite, normal and > 0, and keep the clock finite, got {}",
+        crate::Readable(*.0)
+    )]
     InvalidTimeStep(f64),
     /// A field of [`Settings`] is invalid (see [`Settings::validate`]).
     #[error("settings: {field} {reason}, got {value}")]

@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use serde::Serialize;
-use sphere_physics::{SceneDesc, SceneError, StepStats, ToiMethod, World, WorldError};
+use sphere_physics::{Readable, SceneDesc, SceneError, StepStats, ToiMethod, World, WorldError};
 
 use crate::cli::method_name;
 
@@ -35,7 +35,7 @@ pub enum PlayError {
     World(#[from] WorldError),
     /// The world refused a step part-way through the run (a sphere would leave the finite
     /// range, say): which step, and when.
-    #[error("step {step} (from t = {time} s): {error}")]
+    #[error("step {step} (from t = {} s): {error}", Readable(*.time))]
     Step {
         /// The refused step, counting from 1.
         step: u64,
@@ -46,8 +46,11 @@ pub enum PlayError {
     },
     /// The duration needs too many steps.
     #[error(
-        "--duration {duration} at a step of {dt} s ({step_from}) needs {steps} steps, more than the \
-         limit of {MAX_STEPS}"
+        "--duration {} at a step of {} s ({step_from}) needs {} steps, more than the limit of \
+         {MAX_STEPS}",
+        Readable(*.duration),
+        Readable(*.dt),
+        Readable(*.steps)
     )]
     TooManySteps {
         /// Duration asked for.

@@ -700,6 +700,15 @@ fn regression_runner_review() {
         &[fine.to_str().unwrap(), "substeps"],
     );
     assert!(!fine_trace.exists(), "no trace made");
+    // Regression (found by review): huge and tiny numbers were printed in hundreds of digits.
+    assert_bad_input(
+        &["run", copy_arg, "--duration", "1e300", "--dt", "1e-300"],
+        &["--duration 1e300 at a step of 1e-300 s (--dt) needs inf steps"],
+    );
+    assert_bad_input(
+        &["run", copy_arg, "--duration", "1e20"],
+        &["--duration 1e20 at a step of 0.016666666666666666 s (the default) needs 6e21 steps"],
+    );
     // Two gases' walls share names; each body carries its index.
     let gases = write_scene(
         "review_two_gases.ron",

@@ -175,11 +175,23 @@ impl SceneDesc {
     /// Reads and parses a scene file.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SceneError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
             path: path.to_owned(),
             source,
         })?;
-        Self::from_ron(&text).map_err(|e| match e {
+        // Text that is not UTF-8 is placed too: the line and column of its first bad byte.
+        let text = std::str::from_utf8(&bytes).map_err(|error| {
+            let good = &bytes[..error.valid_up_to()];
+            let line_start = good.iter().rposition(|&b| b == b'\n').map_or(0, |n| n + 1);
+            let column = String::from_utf8_lossy(&good[line_start..]).chars().count() + 1;
+            SceneError::Parse {
+                path: Some(path.to_owned()),
+                line: 1 + good.iter().filter(|&&b| b == b'\n').count(),
+                column,
+                message: "not valid UTF-8 text here".to_string(),
+            }
+        })?;
+        Self::from_ron(text).map_err(|e| match e {
             SceneError::Parse {
                 line,
                 column,

@@ -74,7 +74,9 @@ pub enum Generator {
     },
     /// `count` spheres of one radius moving at `speed` in random directions inside the box
     /// `min..max`, closed (by default) by six fixed walls: spheres of radius `wall_radius`
-    /// whose surfaces touch the box's faces, flat to within `size² / (8 · wall_radius)`.
+    /// whose surfaces touch the box's faces, flat to within `size² / (8 · wall_radius)`. Walls
+    /// too small to close the box's corners (about 4.45 times its largest half-size, less for
+    /// larger spheres) are refused.
     Gas {
         /// How many spheres.
         count: u32,
@@ -443,6 +445,26 @@ impl Generator {
                     .collect();
                 if walls {
                     check.positive("wall_radius", wall_radius)?;
+                    // Walls too small leave a gap at each corner of the box: three walls of
+                    // radius R whose surfaces touch a cube's faces, `h` from its centre, close
+                    // its corner to a sphere of radius r only if R + r >= (h + R)·√(2/3) (then
+                    // the three, grown by r, meet on the corner's diagonal). Checked for the
+                    // cube of the box's largest half-size, which holds the box.
+                    let h = (0..3).fold(0.0f64, |m, k| m.max(0.5 * (max[k] - min[k])));
+                    let k = (2.0f64 / 3.0).sqrt();
+                    let least = (k * h - radius) / (1.0 - k);
+                    if wall_radius < least {
+                        return Err(check.err(
+                            "wall_radius",
+                            format!(
+                                "is too small to close the box: walls of radius {} leave a gap \
+                                 at each corner for spheres of radius {} (at least {} needed)",
+                                crate::Readable(wall_radius),
+                                crate::Readable(radius),
+                                crate::Readable(least)
+                            ),
+                        ));
+                    }
                     // The walls' centres lie `wall_radius` beyond the box: there too an f64
                     // must resolve a millionth of the gas's radius.
                     let far =

@@ -446,10 +446,12 @@ impl Generator {
                 if walls {
                     check.positive("wall_radius", wall_radius)?;
                     // Walls too small leave a gap at each corner of the box: three walls of
-                    // radius R whose surfaces touch a cube's faces, `h` from its centre, close
-                    // its corner to a sphere of radius r only if R + r >= (h + R)·√(2/3) (then
-                    // the three, grown by r, meet on the corner's diagonal). Checked for the
-                    // cube of the box's largest half-size, which holds the box.
+                    // radius R whose surfaces touch a cube's faces, `h` from its centre, leave
+                    // a sphere of radius r a way out along the corner's diagonal unless
+                    // R + r >= (h + R)·√(2/3) (the three, grown by r, then meet on it). Checked
+                    // with the box's largest half-size (exact for a cube; a bound, not a proof,
+                    // for other boxes: 1 m boxes of gas escaped at R = 1.5 m and stayed in at
+                    // the bound's 2 m, see `regression_gas_walls_too_small.rs`).
                     let h = (0..3).fold(0.0f64, |m, k| m.max(0.5 * (max[k] - min[k])));
                     let k = (2.0f64 / 3.0).sqrt();
                     let least = (k * h - radius) / (1.0 - k);

@@ -246,18 +246,19 @@ pub struct Prepared {
 impl Prepared {
     /// Builds `scene`'s world (generating its spheres once) with `playback`'s overrides.
     pub fn new(scene: &SceneDesc, playback: Playback) -> Result<Self, PlayError> {
-        // The method asked for replaces the scene's before anything is checked (a scene's
-        // method out of range does not matter when it is overridden).
+        // The method and the step asked for replace the scene's before anything is checked (a
+        // scene's method out of range, or its bad `dt`, does not matter when it is
+        // overridden).
         let overridden;
-        let scene = match playback.method {
-            Some(method) => {
-                overridden = SceneDesc {
-                    method: Some(method),
-                    ..scene.clone()
-                };
-                &overridden
-            }
-            None => scene,
+        let scene = if playback.method.is_some() || playback.dt.is_some() {
+            overridden = SceneDesc {
+                method: playback.method.or(scene.method),
+                dt: playback.dt.or(scene.dt),
+                ..scene.clone()
+            };
+            &overridden
+        } else {
+            scene
         };
         let world = scene.build()?;
         let (dt, source) = match (playback.dt, scene.dt) {

@@ -700,6 +700,17 @@ fn regression_runner_review() {
         &[fine.to_str().unwrap(), "substeps"],
     );
     assert!(!fine_trace.exists(), "no trace made");
+    // Regression (found by review): a scene's bad `dt` was refused even when `--dt` replaced
+    // it (a bad `method` replaced by `--method` was not). Both are forgiven when replaced.
+    let bad_dt = write_scene(
+        "review_bad_dt.ron",
+        "(name: \"n\", dt: -1.0, spheres: [(position: (0.0, 0.0, 0.0), radius: 1.0)])",
+    );
+    let bad_dt_arg = bad_dt.to_str().unwrap();
+    assert_bad_input(&["run", bad_dt_arg, "--duration", "1"], &["dt", "-1"]);
+    let r = report(&["run", bad_dt_arg, "--duration", "1", "--dt", "0.25"]);
+    assert_eq!(r["dt"], 0.25);
+    assert_eq!(r["steps"], 4);
     // Regression (found by review): huge and tiny numbers were printed in hundreds of digits.
     assert_bad_input(
         &["run", copy_arg, "--duration", "1e300", "--dt", "1e-300"],

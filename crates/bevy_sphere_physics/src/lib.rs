@@ -21,7 +21,7 @@
 //! - **Remove a component a sphere was spawned with**: [`Density`] or [`AppliedForce`] then
 //!   mean their defaults (density 1, no force); without [`SphereVelocity`] or
 //!   [`SpherePosition`] the sphere keeps moving as the core has it (a removed `SpherePosition`
-//!   is put back).
+//!   is put back, as is a removed [`PreviousSpherePosition`]).
 //! - **Change a component** ([`SphereVelocity`], [`SphereBody::radius`], [`Density`],
 //!   [`Restitution`], [`AppliedForce`], [`SpherePosition`] to teleport, [`FixedSphere`],
 //!   [`Tethered`]): applied at the next fixed step's `Prepare`. Writing `Transform` does

@@ -237,9 +237,10 @@ pub enum WorldError {
     #[error("no body {0}")]
     UnknownBody(BodyId),
     /// The time step is not finite and > 0 (or is subnormal: dividing by it overflows), or
-    /// would take the world's clock ([`World::time`]) past the largest finite time.
+    /// would take the world's clock ([`World::time`]) past the largest finite time, or is too
+    /// small against the clock to advance it (the clock is kept, not the step).
     #[error(
-        "time step must be finite, normal and > 0, and keep the clock finite, got {}",
+        "time step must be finite, normal and > 0, and keep the clock finite and advancing, got {}",
         crate::Readable(*.0)
     )]
     InvalidTimeStep(f64),
@@ -517,8 +518,8 @@ impl World {
     }
 
     /// Advances the world by `dt`. On an invalid `dt` (or one the settings' substeps would cut
-    /// into subnormal substeps, or that would take the clock past the largest finite time) or
-    /// invalid settings (see [`Settings::validate`]) nothing changes. A sphere whose position
+    /// into subnormal substeps, or that would take the clock past the largest finite time or
+    /// leave it where it is) or invalid settings (see [`Settings::validate`]) nothing changes. A sphere whose position
     /// or velocity would leave the finite range within the step (an absurd `dt` or speed, or
     /// the impulse of a kinematic sphere moving near the largest finite speed) is an error
     /// naming it; the step stops before the substep that would overflow, so no state turns
@@ -548,7 +549,8 @@ impl World {
     /// (within the caps), and where nothing accelerates the pair's centre of mass is then not
     /// kept. [`StepStats::separated`] counts the spheres moved.
     pub fn step(&mut self, dt: f64) -> Result<&StepStats, WorldError> {
-        if !(dt.is_normal() && dt > 0.0 && (self.time + dt).is_finite()) {
+        let next = self.time + dt;
+        if !(dt.is_normal() && dt > 0.0 && next.is_finite() && next > self.time) {
             return Err(WorldError::InvalidTimeStep(dt));
         }
         self.settings.validate()?;

@@ -2,6 +2,8 @@
 //! - A time step of `f64::MAX` is a normal number and was taken: two of them sent the world's
 //!   clock (and every later collision's time) to infinity. A step that would take the clock
 //!   past the largest finite time is now refused, and changes nothing.
+//! - A step too small against the clock to advance it (1 s after a step of 1e300 s) was taken:
+//!   the spheres moved while the clock stood still. It is refused now, and changes nothing.
 //! - When groups are next checked for sleep was set from `Sleep::time` at the last check and
 //!   kept when `Sleep::time` was then shortened: a group calm for the new time waited up to a
 //!   quarter of the old one (25 s after 100 s) to fall asleep. It now falls asleep within a
@@ -27,6 +29,32 @@ fn regression_a_step_that_would_make_the_clock_infinite_is_refused() {
     assert_eq!(world.time(), f64::MAX);
     assert_eq!(world.steps(), 1);
     assert_eq!(format!("{:?} {:?}", world.bodies(), world.stats()), before);
+}
+
+#[test]
+fn regression_a_step_that_would_not_advance_the_clock_is_refused() {
+    let mut world = World::new(Settings {
+        gravity: DVec3::ZERO,
+        ..Settings::default()
+    });
+    world
+        .add_sphere(SphereDesc::new(1.0).moving(DVec3::new(1e-300, 0.0, 0.0)))
+        .unwrap();
+    world.step(1e300).unwrap();
+    assert_eq!(world.time(), 1e300);
+    let before = format!("{:?} {:?}", world.bodies(), world.stats());
+    assert_eq!(
+        world.step(1.0).err(),
+        Some(WorldError::InvalidTimeStep(1.0))
+    );
+    assert_eq!(world.time(), 1e300);
+    assert_eq!(world.steps(), 1);
+    assert_eq!(format!("{:?} {:?}", world.bodies(), world.stats()), before);
+    // A step of the clock's last bit does advance it, and is taken.
+    let last_bit = 1e300 - f64::from_bits(1e300f64.to_bits() - 1);
+    world.step(last_bit).unwrap();
+    assert!(world.time() > 1e300);
+    assert_eq!(world.steps(), 2);
 }
 
 #[test]

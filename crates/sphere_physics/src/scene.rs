@@ -72,7 +72,8 @@ pub struct SceneDesc {
     pub generate: Vec<Generator>,
     /// A box a viewer keeps in view besides the spheres, `(low corner, high corner)` (default
     /// none): for motion that leaves where the spheres start, such as a ball thrown high. The
-    /// lab frames it with the spheres; runners ignore it. See [`SceneDesc::view`].
+    /// lab frames it with the spheres; runners do not use it, but check it (a bad one fails
+    /// [`SceneDesc::build`]). See [`SceneDesc::view`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub view: Option<[[f64; 3]; 2]>,
 }
@@ -330,9 +331,13 @@ impl SceneDesc {
             .collect())
     }
 
-    /// Builds the world: the first invalid sphere, if any, is reported by name or index.
+    /// Builds the world: the first invalid sphere, if any, is reported by name or index. A
+    /// bad `view` box fails it too (see [`SceneDesc::view`]), though the world does not use
+    /// it, so a file a viewer refuses is refused everywhere.
     pub fn build(&self) -> Result<World, SceneError> {
-        let mut world = World::new(self.settings()?);
+        let settings = self.settings()?;
+        self.view()?;
+        let mut world = World::new(settings);
         for desc in self.sphere_descs()? {
             world.add_sphere(desc)?;
         }

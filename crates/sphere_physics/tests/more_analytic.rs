@@ -202,7 +202,9 @@ fn scene_parse_errors_say_where() {
 }
 
 /// A scene's `view` box: read from the file, written back by `to_ron`, ignored by the world,
-/// and refused with the field named when a corner is not finite or the corners are swapped.
+/// and refused with the field named when a corner is not finite or the corners are swapped,
+/// by `view` and by `build` (found by review: `build` took it, so a runner played a file the
+/// lab refused).
 #[test]
 fn a_scene_view_is_read_checked_and_kept() {
     let text = "(name: \"thrown\", gravity: (0.0, -9.81, 0.0),
@@ -234,6 +236,8 @@ fn a_scene_view_is_read_checked_and_kept() {
             message.contains("view") && message.contains(reason),
             "{message}"
         );
+        let built = scene.build().err().map(|e| e.to_string());
+        assert_eq!(built, Some(message));
     }
 }
 

@@ -720,6 +720,17 @@ fn regression_runner_review() {
         &["run", copy_arg, "--duration", "1e20"],
         &["--duration 1e20 at a step of 0.016666666666666666 s (the default) needs 6e21 steps"],
     );
+    // Regression (found by review): a scene's bad `view` box, which the lab refuses, was
+    // played (a runner does not use it, but the file is bad).
+    let bad_view = write_scene(
+        "review_bad_view.ron",
+        "(name: \"n\", spheres: [(position: (0.0, 0.0, 0.0), radius: 1.0)],
+            view: ((0.0, NaN, 0.0), (1.0, 1.0, 1.0)))",
+    );
+    assert_bad_input(
+        &["run", bad_view.to_str().unwrap(), "--duration", "1"],
+        &["review_bad_view.ron: ", "view", "finite"],
+    );
     // Two gases' walls share names; each body carries its index.
     let gases = write_scene(
         "review_two_gases.ron",

@@ -73,11 +73,17 @@ impl Solver {
         } else {
             reach + band
         };
-        if distance_squared > near * near || distance_squared == 0.0 {
+        if distance_squared > near * near {
             return false;
         }
         let distance = distance_squared.sqrt();
-        let normal = d / distance;
+        // Two spheres at the same point (spawned together) have no normal: they part along x,
+        // as where nothing accelerates (see `separate.rs`).
+        let normal = if distance_squared == 0.0 {
+            DVec3::X
+        } else {
+            d / distance
+        };
         if distance > reach + band {
             self.near.push((i as u32, j as u32, normal, distance));
             return false;

@@ -57,9 +57,11 @@ fn at_start(d: DVec3, w: DVec3, contact: f64, tol: Tolerance) -> Option<ToiOutco
 /// Written for precision: the discriminant is computed as `|w|^2 R^2 - |d x w|^2` (no
 /// cancellation between large terms for fast or distant pairs) and the root as
 /// `c / (-b + sqrt(disc))` with `c = (|d| - R)(|d| + R)` (no cancellation for grazing or nearly
-/// touching pairs). Nothing can tunnel, whatever the speeds or the step length, as long as
-/// the squares stay within an f64: distances, radii and each step's travel below about 1e150 m
-/// (radii are held to [`MAX_RADIUS`](crate::MAX_RADIUS)).
+/// touching pairs). Where the products of speed and distance overflow an f64 (past about
+/// 1e154, as a sphere of 1e100 m met at 1e94 m/s), the same root is taken with the relative
+/// velocity scaled to at most 1 a component. Nothing can tunnel, whatever the speeds or the
+/// step length, as long as the squares of distances stay within an f64: distances and radii
+/// below about 1e150 m (radii are held to [`MAX_RADIUS`](crate::MAX_RADIUS)).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExactToi;
 
@@ -85,6 +87,24 @@ impl TimeOfImpact for ExactToi {
         }
         let a = w.length_squared();
         let disc = a * contact * contact - d.cross(w).length_squared();
+        if !disc.is_finite() {
+            // Speed times distance overflowed: the same root in units where the relative
+            // velocity is at most 1 a component, the time scaled back.
+            let scale = w.abs().max_element();
+            let unit = w / scale;
+            let half_b = d.dot(unit);
+            let disc = unit.length_squared() * contact * contact - d.cross(unit).length_squared();
+            if half_b >= 0.0 || disc < 0.0 || disc.is_nan() {
+                return none;
+            }
+            let distance = d.length();
+            let c = (distance - contact) * (distance + contact);
+            let t = c / (-half_b + disc.sqrt()) / scale;
+            return ToiOutcome {
+                time: (t <= t_max).then_some(t),
+                iterations: 0,
+            };
+        }
         if disc < 0.0 {
             return none;
         }

@@ -16,6 +16,12 @@ pub const MAX_RADIUS: f64 = 1e150;
 /// and no limit.
 pub const MAX_MASS: f64 = 1e200;
 
+/// The smallest mass a moving sphere may have, 1e-300 kg: its inverse, at most 1e300, leaves
+/// the sums of a few inverse masses that every impulse divides by within an f64. Lighter
+/// spheres (below about 1.1e-308 kg) overflowed that sum to infinity: two of them met with no
+/// impulse and passed through each other, and their resting contacts carried no load.
+pub const MIN_MASS: f64 = 1e-300;
+
 /// Stable identifier of a body in a [`World`](crate::World). Ids are never reused (64 bits: a
 /// world adding a million spheres a second runs out after half a million years). Ties between
 /// simultaneous events are broken by a deterministic order (ids in small scenes, the broad
@@ -217,26 +223,21 @@ impl SphereDesc {
                 ));
             }
         }
-        // The mass `Body::new` will use, and its inverse: both must be finite and > 0, and the
-        // mass at most `MAX_MASS`. The radius is to blame when its volume alone (at density
-        // 1) is out of range.
-        let mass_ok = |density| {
-            let mass = mass_of(density, self.radius);
-            let inverse = 1.0 / mass;
-            mass.is_finite() && mass > 0.0 && mass <= MAX_MASS && inverse.is_finite()
-        };
+        // The mass `Body::new` will use: from `MIN_MASS` to `MAX_MASS`. The radius is to blame
+        // when its volume alone (at density 1) is out of range.
+        let mass_ok = |density| (MIN_MASS..=MAX_MASS).contains(&mass_of(density, self.radius));
         if !(self.fixed || mass_ok(self.density)) {
             return Err(if mass_ok(1.0) {
                 err(
                     Field::Density,
                     self.density,
-                    "gives a mass that is 0 or above 1e200 kg",
+                    "gives a mass below 1e-300 kg or above 1e200 kg",
                 )
             } else {
                 err(
                     Field::Radius,
                     self.radius,
-                    "gives a volume, and so a mass, that is 0 or above 1e200 kg",
+                    "gives a volume, and so a mass, below 1e-300 kg or above 1e200 kg",
                 )
             });
         }

@@ -62,7 +62,9 @@ pub mod toi;
 pub mod tolerance;
 pub mod world;
 
-pub use body::{Body, BodyError, BodyId, Field, MAX_MASS, MAX_RADIUS, SphereDesc, Tether};
+pub use body::{
+    Body, BodyError, BodyId, Field, MAX_MASS, MAX_RADIUS, MIN_MASS, SphereDesc, Tether,
+};
 pub use contact::{ContactKind, Kinematics, classify};
 pub use glam;
 pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};

@@ -12,7 +12,7 @@ mod common;
 
 use common::{centre_of_mass, deepest_overlap as deepest, overlapping_crowd};
 use sphere_physics::glam::DVec3;
-use sphere_physics::{Settings, SphereDesc, World};
+use sphere_physics::{MIN_MASS, Settings, SphereDesc, World};
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -265,21 +265,25 @@ fn regression_a_tiny_sphere_deep_in_a_huge_one_stays_finite() {
 }
 
 /// Found in review: two spheres so light that their inverse masses' sum overflows (radius 1,
-/// density 2e-309: masses near 8e-309) got shares of 0 and were never moved apart. Now
-/// the shares are taken from the weights over the larger: equal spheres share equally, a
-/// tenth of a radius a step each.
+/// density 2e-309: masses near 8e-309) got shares of 0 and were never moved apart. The
+/// shares were then taken from the weights over the larger; since a later review (their
+/// impulses overflowed the same way) such spheres are refused (`MIN_MASS`), and the lightest
+/// allowed part as any: equal spheres share equally, a tenth of a radius a step each.
 #[test]
 fn regression_spheres_too_light_to_sum_their_inverse_masses_still_part() {
     let mut world = World::new(Settings::default());
     let radius = 1.0;
-    let light = |x: f64| {
+    let light = |x: f64, density: f64| {
         SphereDesc::new(radius)
             .at(DVec3::new(x, 0.0, 0.0))
-            .with_density(2e-309)
+            .with_density(density)
     };
-    let a = world.add_sphere(light(0.0)).unwrap();
-    let b = world.add_sphere(light(radius)).unwrap();
-    assert!(world.body(a).unwrap().inverse_mass() > 0.5 * f64::MAX);
+    let error = world.add_sphere(light(0.0, 2e-309)).unwrap_err();
+    assert_eq!(error.field, sphere_physics::Field::Density);
+    let lightest = 1.000001 * MIN_MASS / (4.0 / 3.0 * std::f64::consts::PI);
+    let a = world.add_sphere(light(0.0, lightest)).unwrap();
+    let b = world.add_sphere(light(radius, lightest)).unwrap();
+    assert!(world.body(a).unwrap().inverse_mass() > 0.99e300);
     // A radius of overlap: five steps of a tenth of a radius each.
     for step in 1..=6 {
         let stats = *world.step(DT).unwrap();

@@ -64,17 +64,22 @@ pub(crate) fn resolve_at(
             impulse: 0.0,
         };
     }
-    let restitution = if restitution >= 0.0 {
-        restitution.min(1.0)
-    } else {
-        0.0
-    };
+    let restitution = clamped(restitution);
     // With no lag the first is the larger (restitution is not negative), exactly.
     let impulse = (-(1.0 + restitution) * (normal_speed + lag)).max(-normal_speed) / inverse_sum;
     Resolution {
         velocity_a: velocity_a - normal * (impulse * inverse_mass_a),
         velocity_b: velocity_b + normal * (impulse * inverse_mass_b),
         impulse,
+    }
+}
+
+/// A restitution as the responses take it: within `[0, 1]`, NaN as 0.
+fn clamped(restitution: f64) -> f64 {
+    if restitution >= 0.0 {
+        restitution.min(1.0)
+    } else {
+        0.0
     }
 }
 
@@ -113,7 +118,7 @@ pub struct GroupContact {
     pub b: usize,
     /// Unit normal from `a` to `b`.
     pub normal: DVec3,
-    /// The contact's restitution.
+    /// The contact's restitution, taken within `[0, 1]` (NaN as 0), as [`resolve`] takes it.
     pub restitution: f64,
     /// The separating speed the compression impulse aims for, `>= 0` (a negative or non-finite
     /// one counts as 0): 0 for a plain contact
@@ -209,7 +214,10 @@ pub fn resolve_simultaneous(
     // Contacts of several restitutions: their restitution impulses may gain energy (below),
     // measured in the frame of the group's fixed bodies (a moving fixed sphere, kinematic,
     // gives energy on purpose), unless they move apart (then there is no frame to judge in).
-    let mut restitutions = contacts.iter().filter(|c| !c.string).map(|c| c.restitution);
+    let mut restitutions = contacts
+        .iter()
+        .filter(|c| !c.string)
+        .map(|c| clamped(c.restitution));
     let first = restitutions.next();
     let mut mixed = restitutions.any(|e| Some(e) != first);
     let mut frame = None;
@@ -280,7 +288,7 @@ pub fn resolve_simultaneous(
     let restitute = |velocities: &mut [DVec3], scale: f64| {
         for (c, &impulse) in contacts.iter().zip(impulses.iter()) {
             if !c.string {
-                apply(velocities, c, scale * c.restitution * impulse);
+                apply(velocities, c, scale * clamped(c.restitution) * impulse);
             }
         }
     };
@@ -312,7 +320,7 @@ pub fn resolve_simultaneous(
     }
     for (c, impulse) in contacts.iter().zip(impulses.iter_mut()) {
         if !c.string {
-            *impulse += kept * c.restitution * *impulse;
+            *impulse += kept * clamped(c.restitution) * *impulse;
         }
     }
     // The restitution impulses may stretch a string: pull it back (restitution 0), one pass per

@@ -519,8 +519,8 @@ impl Solver {
     }
 
     /// Records the collision of bodies `a` and `b` at time `t` of the step, along `normal`
-    /// (from `a` to `b`), at `a`'s surface, with the lower id first (the normal turned if
-    /// that is `b`).
+    /// (from `a` to `b`), with the lower id first (the normal turned if that is `b`), at
+    /// that body's surface.
     pub(super) fn record_collision(
         &mut self,
         (a, b): (usize, usize),
@@ -530,14 +530,15 @@ impl Solver {
         resting: bool,
         ctx: &StepContext<'_>,
     ) {
-        let sa = &self.segments[a];
-        let point = sa.position + normal * sa.radius();
         let (id_a, id_b) = (self.extra(a).id, self.extra(b).id);
-        let (a, b, normal) = if id_a <= id_b {
-            (id_a, id_b, normal)
+        let (first, a, b, normal) = if id_a <= id_b {
+            (a, id_a, id_b, normal)
         } else {
-            (id_b, id_a, -normal)
+            (b, id_b, id_a, -normal)
         };
+        // On the surface of the body reported first (an overlapping pair's surfaces differ).
+        let s = &self.segments[first];
+        let point = s.position + normal * s.radius();
         self.collisions.push(Collision {
             a,
             b,

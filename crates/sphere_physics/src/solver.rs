@@ -1210,6 +1210,10 @@ impl Solver {
         );
         pairs.clear();
         asked.clear();
+        // Room for the most a scan may hold (once: a step then never grows them).
+        let room = BroadPhase::pairs_room(boxes.len(), PAIR_BATCH);
+        pairs.reserve(room);
+        asked.reserve(room);
         broad.pairs_batched(boxes, &mut pairs, PAIR_BATCH, |batch| {
             for &(_, j) in batch.iter() {
                 prefetch(&self.segments[j as usize]);

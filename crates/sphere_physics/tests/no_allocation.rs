@@ -121,6 +121,36 @@ fn a_warmed_up_step_allocates_nothing() {
     world.wake(first).unwrap();
     let pit_allocations = allocations(&mut world, 0, 150);
     assert_eq!(world.stats().asleep, 150, "the pit fell asleep again");
+    // Regression (found by review): the grid's buffers were sized to its share of the
+    // bodies, and the pairs' buffers to the most candidates any body had had near it, so a
+    // step allocated when either grew past what it had been: here 48 fast spheres, their
+    // swept boxes too large for the grid's cells, are slowed and join the grid (4 allocations
+    // in 5 steps). Both are now sized to all the bodies.
+    let mut world = World::new(Settings::default());
+    let lattice = |i: u32| f64::from(i);
+    for i in 0..343 {
+        let at = DVec3::new(lattice(i % 7), lattice(i / 7 % 7), lattice(i / 49));
+        let slow = DVec3::new(0.01, 0.0, 0.0);
+        world
+            .add_sphere(SphereDesc::new(0.05).at(at).moving(slow))
+            .unwrap();
+    }
+    // In lanes between the lattice's rows, never near a sphere of it or of another lane.
+    let fast: Vec<BodyId> = (0..48)
+        .map(|i| {
+            let at = DVec3::new(lattice(i % 6) + 0.5, lattice(i / 6 % 6) + 0.5, 0.0);
+            let desc = SphereDesc::new(0.05)
+                .at(at)
+                .moving(DVec3::new(0.0, 0.0, 30.0));
+            world.add_sphere(desc).unwrap()
+        })
+        .collect();
+    let _ = allocations(&mut world, 5, 0);
+    for &id in &fast {
+        world.set_velocity(id, DVec3::new(0.0, 0.0, 0.01)).unwrap();
+    }
+    let joining_allocations = allocations(&mut world, 0, 5);
+    assert_eq!(world.stats().collisions, 0);
     // A game that sets every sphere's velocity, force and position each frame: no allocation
     // either (each change used to be checked on a copy of the sphere's description, name and
     // all: 300 allocations here).
@@ -150,8 +180,9 @@ fn a_warmed_up_step_allocates_nothing() {
             spreading_allocations,
             crowd_allocations,
             pit_allocations,
+            joining_allocations,
             setter_allocations
         ),
-        (0, 0, 0, 0, 0, 0)
+        (0, 0, 0, 0, 0, 0, 0)
     );
 }

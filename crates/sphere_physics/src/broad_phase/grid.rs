@@ -27,6 +27,10 @@ const PREFETCHED_ROWS: usize = 9;
 /// left a mispredicted branch at the end of most rows (both slower, measured).
 const BLOCK: usize = 2;
 
+/// The offers a scan for one body's pairs may write beyond its candidates: a block for each
+/// of its five ranges.
+pub(crate) const SCAN_PADDING: usize = 5 * BLOCK;
+
 /// Rows a query reads in one pass ([`Grid::one_pass_rows`]): three by three (y, z).
 const ONE_PASS_ROWS: usize = 9;
 
@@ -167,7 +171,10 @@ impl Grid {
         self.dims = self.axes.each_ref().map(Squeeze::len);
         self.len = cells.len();
         std::mem::swap(&mut self.cells, cells);
+        // Room for every body (`boxes` has one each), not the grid's share: that may grow
+        // from step to step.
         self.present.clear();
+        self.present.reserve(boxes.len());
         self.present.resize(self.len, true);
         // The frame spans the block's cells before any squeeze: every box of the grid is
         // packed by the same map, whatever lies between.
@@ -177,6 +184,7 @@ impl Grid {
         self.frame = Frame::new(corner_of(first) * self.cell, self.cell, span);
         let frame = &self.frame;
         self.boxes.clear();
+        self.boxes.reserve(boxes.len() + BLOCK);
         self.boxes
             .extend(boxes[..self.len].iter().map(|b| Packed::new(frame, b)));
         // Padding, so that a scan may read a whole block past any range's start.
@@ -255,8 +263,7 @@ impl Grid {
             // Every candidate is written, and kept only if its box overlaps, so no branch
             // depends on an overlap (a coin toss the branch predictor loses). A range takes
             // whole blocks, at least one: fewer than its length plus a block in all.
-            let room =
-                ranges.iter().map(|&(from, to)| to - from).sum::<usize>() + ranges.len() * BLOCK;
+            let room = ranges.iter().map(|&(from, to)| to - from).sum::<usize>() + SCAN_PADDING;
             let mut kept = Kept::new(out, room);
             for (from, to) in ranges {
                 // A row of up to a block's bodies (the usual) takes one pass, with no branch on

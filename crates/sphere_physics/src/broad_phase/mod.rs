@@ -264,6 +264,8 @@ impl BroadPhase {
         self.permutation.clear();
         self.permutation.resize(n, 0);
         self.sorted_cells.clear();
+        // Room for every body, not the grid's share: that may grow from step to step.
+        self.sorted_cells.reserve(n);
         self.sorted_cells.resize(in_grid, [0; 3]);
         let mut rest = n;
         for (i, cell) in self.cells.iter().enumerate().rev() {
@@ -471,6 +473,14 @@ impl BroadPhase {
         }
         self.hierarchy.update(i, b);
         false
+    }
+
+    /// The room a buffer of pairs handed to [`BroadPhase::pairs_batched`] (and each one
+    /// `flush` leaves in its place) needs so that the scan never grows it, whatever the
+    /// crowding, for `n` boxes: the scan reserves room for every candidate near a body at a
+    /// time, at most all the boxes, beyond less than a batch.
+    pub fn pairs_room(n: usize, batch: usize) -> usize {
+        n + batch + grid::SCAN_PADDING
     }
 
     /// Appends to `out` every pair `(i, j)` with `i < j` of overlapping boxes, each pair once,

@@ -63,6 +63,8 @@ struct ComingToRest {
     before: Vec<BodyId>,
     now: Vec<BodyId>,
     allowed: f64,
+    /// Resting impacts so far.
+    taken: usize,
 }
 
 impl ComingToRest {
@@ -72,6 +74,7 @@ impl ComingToRest {
         let half_kick = 9.81 * dt / 2.0;
         self.now.clear();
         for c in world.collisions().iter().filter(|c| c.resting) {
+            self.taken += 1;
             for id in [c.a, c.b] {
                 let body = world.body(id).unwrap();
                 if !body.is_fixed() && !self.now.contains(&id) {
@@ -142,6 +145,15 @@ proptest! {
                 "step {}: {} from {} ({:e} more; {:e} allowed for balls coming to rest)",
                 step, energy, start, (energy - start) / start, coming_to_rest
             );
+            // Nor less, until a ball takes a resting impact (restitution 0). (Only more was
+            // checked until a review: an impulse 0.1% short of elastic passed.)
+            if resting.taken == 0 {
+                prop_assert!(
+                    energy >= start - 1e-12 * start.abs(),
+                    "step {}: {} from {} ({:e} less)",
+                    step, energy, start, (start - energy) / start
+                );
+            }
         }
     }
 
@@ -173,6 +185,15 @@ proptest! {
                 "step {}: {} from {} ({:e} more; {:e} allowed for balls coming to rest)",
                 step, energy, start, (energy - start) / start, coming_to_rest
             );
+            // Nor less, until a ball takes a resting impact (restitution 0). (Only more was
+            // checked until a review: an impulse 0.1% short of elastic passed.)
+            if resting.taken == 0 {
+                prop_assert!(
+                    energy >= start - 1e-12 * start.abs(),
+                    "step {}: {} from {} ({:e} less)",
+                    step, energy, start, (start - energy) / start
+                );
+            }
         }
     }
 }

@@ -193,17 +193,22 @@ proptest! {
         };
         let mut world = common::strung_world(&spheres, settings);
         let dt = 1.0 / steps_per_second;
-        let mut deferred = 0;
+        let mut deferred_before = 0;
         let start = world.kinetic_energy();
         for step in 0..60 {
-            deferred += world.step(dt).unwrap().collisions_deferred;
+            let deferred_now = world.step(dt).unwrap().collisions_deferred;
+            // A step is judged unless it or the one before put collisions off (found by
+            // review: a sum over the case stopped judging every step after the first).
+            let deferred = deferred_now + deferred_before;
+            deferred_before = deferred_now;
             // With no gravity nothing does work: the strings pull across the motion and the
             // impacts take energy away. A string's drift is a chord, so not exactly: a step
-            // may gain a little.
+            // might gain a little, though none did in these cases or three other seeds' (the
+            // bound was 5% until a review asked for the measured gain).
             if !gravity {
                 let energy = world.kinetic_energy();
                 prop_assert!(
-                    energy <= 1.05 * start + 1e-12,
+                    energy <= start * (1.0 + 1e-9) + 1e-12,
                     "step {}: kinetic energy {} from {}", step, energy, start
                 );
             }

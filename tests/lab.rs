@@ -669,7 +669,7 @@ fn a_scene_with_a_bad_step_restitution_or_view_is_listed_as_an_error_not_a_panic
 }
 
 /// Positions and velocities of every sphere, in body order, after exactly `steps` steps.
-fn run_for(app: &mut App, steps: u64) -> Vec<[f64; 6]> {
+fn run_for(app: &mut App, steps: u64) -> Vec<[u64; 6]> {
     for _ in 0..10 * steps {
         if app.world().resource::<SpherePhysicsDiagnostics>().steps >= steps {
             break;
@@ -687,7 +687,7 @@ fn run_for(app: &mut App, steps: u64) -> Vec<[f64; 6]> {
         .iter()
         .map(|b| {
             let (p, v) = (b.position(), b.velocity());
-            [p.x, p.y, p.z, v.x, v.y, v.z]
+            [p.x, p.y, p.z, v.x, v.y, v.z].map(f64::to_bits)
         })
         .collect()
 }

@@ -187,6 +187,7 @@ fn cradle_from_entities_matches_the_core_alone() {
 struct Seen {
     messages: Vec<SphereCollision>,
     hits: Vec<(Entity, Entity)>,
+    global: Vec<(Entity, Entity)>,
 }
 
 #[test]
@@ -202,6 +203,10 @@ fn collision_messages_and_observers_fire_once_per_collision() {
     let observe = |hit: On<SphereHit>, mut seen: ResMut<Seen>| {
         seen.hits.push((hit.entity, hit.other));
     };
+    // A global observer, on no entity, sees the collision once for each sphere.
+    app.add_observer(|hit: On<SphereHit>, mut seen: ResMut<Seen>| {
+        seen.global.push((hit.entity, hit.other));
+    });
     let a = app
         .world_mut()
         .spawn((
@@ -234,6 +239,9 @@ fn collision_messages_and_observers_fire_once_per_collision() {
     let mut expected = vec![(a, b), (b, a)];
     expected.sort();
     assert_eq!(hits, expected, "each sphere's observer once");
+    let mut global = seen.global.clone();
+    global.sort();
+    assert_eq!(global, expected, "the global observer once for each sphere");
 }
 
 #[test]
@@ -591,7 +599,10 @@ fn the_same_app_twice_is_bit_identical() {
         run_steps(&mut app, 120);
         balls
             .iter()
-            .map(|&e| (position(&app, e).to_array(), velocity(&app, e).to_array()))
+            .map(|&e| {
+                let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+                (bits(position(&app, e)), bits(velocity(&app, e)))
+            })
             .collect::<Vec<_>>()
     };
     assert_eq!(run(), run());

@@ -157,10 +157,9 @@ fn a_measured_run_lists_each_timed_step_and_they_add_up() {
     assert!(m.per_step.iter().all(|r| r.resting <= r.collisions));
     let seconds: f64 = m.per_step.iter().map(|r| r.seconds).sum();
     assert!((seconds - m.seconds).abs() <= 1e-9 * m.seconds.max(1.0));
-    // The slowest step is the slowest of those listed: at least the mean, at most the sum.
+    // The slowest step is the slowest of those listed.
     let slowest = m.per_step.iter().map(|r| r.seconds).fold(0.0, f64::max);
     assert_eq!(m.slowest, slowest);
-    assert!(m.slowest * 20.0 >= m.seconds && m.slowest <= m.seconds);
     let events: f64 = m.per_step.iter().map(|r| r.events.unwrap()).sum();
     let phases = m.phases.unwrap().events.as_secs_f64();
     assert!((events - phases).abs() <= 1e-6, "{events} against {phases}");

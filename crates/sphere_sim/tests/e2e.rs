@@ -37,6 +37,12 @@ fn report(args: &[&str]) -> Value {
         "sphere-sim {args:?} failed: {}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // Piped, so no progress bar (nor anything else) on standard error.
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("stdout is one JSON document")
 }
 
@@ -784,4 +790,38 @@ fn regression_step_rounding_is_within_the_division_rounding() {
     assert_eq!(StepPlan::new(2.0, 1.0 / 60.0).unwrap().full, 120);
     let plan = StepPlan::new(1e6, 0.001).unwrap();
     assert_eq!((plan.full, plan.last), (1_000_000_000, 0.0));
+}
+
+/// The README's promises on the report's edges (found by a review of the tests: none checked
+/// them): a quantity that overflows an f64 is printed as `null`, and a report that cannot be
+/// written once the run is done exits with code 1.
+#[test]
+fn an_overflowing_energy_is_null_and_an_unwritable_report_exits_with_code_1() {
+    let fast = write_scene(
+        "edges_fast.ron",
+        "(name: \"n\", spheres: [(name: \"fast\", position: (0.0, 0.0, 0.0),
+            velocity: (1e160, 0.0, 0.0), radius: 1.0)])",
+    );
+    let fast_arg = fast.to_str().unwrap();
+    let r = report(&["run", fast_arg, "--duration", "0.1"]);
+    assert!(r["stats"]["kinetic_energy"].is_null(), "{}", r["stats"]);
+    assert!(r["stats"]["total_energy"].is_null(), "{}", r["stats"]);
+    // The momentum does not overflow: 4/3·π·1e160.
+    let momentum = r["stats"]["momentum"][0].as_f64().unwrap();
+    assert!((momentum / (4.0 / 3.0 * std::f64::consts::PI * 1e160) - 1.0).abs() < 1e-12);
+    assert_eq!(body(&r, "fast")["velocity"][0], 1e160);
+    // A full disk: every write to /dev/full fails. (A trace must be named .csv or .jsonl.)
+    if std::path::Path::new("/dev/full").exists() {
+        let out = sim(&[
+            "run",
+            fast_arg,
+            "--duration",
+            "0.1",
+            "--output",
+            "/dev/full",
+        ]);
+        assert_eq!(out.status.code(), Some(1));
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
 }

@@ -1,4 +1,5 @@
-//! Criterion benches of the core's step on the shower and the gas at 1k, 10k and 100k spheres.
+//! Criterion benches of the core's step on the shower and the gas at 1k, 10k and 100k spheres,
+//! and on the gas of 10k 2e8 m from the origin.
 //! Each iteration steps a warmed-up world once (the world keeps evolving between iterations).
 //! Also: one step of a shell of 40 000 spheres landing at one instant on one central sphere
 //! (one simultaneous group of 40 000 impacts: it took 0.35 to 0.41 s while groups were solved
@@ -24,6 +25,14 @@ fn step(c: &mut Criterion) {
             });
         }
     }
+    // The gas 2e8 m out along each axis: as fast as at the origin (it was quadratic).
+    let mut world = scenes::far_gas(10_000, 1).build().expect("valid");
+    for _ in 0..15 {
+        world.step(1.0 / 60.0).expect("valid dt");
+    }
+    group.bench_function("far gas/10000", |b| {
+        b.iter(|| world.step(1.0 / 60.0).expect("valid dt").collisions)
+    });
     group.finish();
 }
 

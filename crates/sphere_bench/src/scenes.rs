@@ -103,13 +103,29 @@ pub fn sparse(n: u32, seed: u64) -> SceneDesc {
 
 /// The [`gas`] of `n` spheres named `name` with one lattice site in `sites` filled.
 fn walled_gas(name: &str, n: u32, seed: u64, sites: u32) -> SceneDesc {
+    walled_gas_at(name, n, seed, sites, 0.0)
+}
+
+/// How far out [`far_gas`] lies on each axis, in metres: 2e9 cells of its spheres' size, past
+/// the two billion cells a grid counted from the origin can number.
+pub const FAR: f64 = 2.0e8;
+
+/// The [`gas`] of `n` spheres moved [`FAR`] metres out along each axis: its cost per sphere
+/// should be the gas's (until the fifty-sixth session its cells were all clamped to one, and
+/// every two spheres were compared: 2000 of them stepped 28 times slower).
+pub fn far_gas(n: u32, seed: u64) -> SceneDesc {
+    walled_gas_at("far gas", n, seed, 4, FAR)
+}
+
+/// [`walled_gas`] centred at `at` on every axis.
+fn walled_gas_at(name: &str, n: u32, seed: u64, sites: u32, at: f64) -> SceneDesc {
     let side = side_for(f64::from(sites) * f64::from(n));
     SceneDesc::from_ron(&format!(
         "(name: \"{name} {n}\", gravity: (0.0, 0.0, 0.0), restitution: 1.0,
           generate: [Gas(count: {n}, seed: {seed}, min: ({lo:?}, {lo:?}, {lo:?}),
                          max: ({hi:?}, {hi:?}, {hi:?}), radius: {RADIUS:?}, speed: 1.0)])",
-        lo = -side / 2.0,
-        hi = side / 2.0,
+        lo = at - side / 2.0,
+        hi = at + side / 2.0,
     ))
     .expect("the gas scenes are valid")
 }

@@ -243,3 +243,28 @@ fn the_sparse_gas_is_the_gas_scattered_evenly_and_far_apart() {
             .all(|b| (b.velocity().length() - 1.0).abs() < 1e-12)
     );
 }
+
+#[test]
+fn the_far_gas_is_a_gas_as_large_moved_out() {
+    let (near, far) = (scenes::gas(1000, 1), scenes::far_gas(1000, 1));
+    let (near, far) = (near.sphere_descs().unwrap(), far.sphere_descs().unwrap());
+    assert_eq!(near.len(), far.len());
+    // The same box around a centre 2e8 m out on each axis (its lattice sites, drawn at that
+    // distance, are not the gas's to the bit).
+    let reach = |descs: &[sphere_physics::SphereDesc], centre: f64| {
+        descs
+            .iter()
+            .filter(|d| !d.fixed)
+            .map(|d| {
+                (d.position - sphere_physics::glam::DVec3::splat(centre))
+                    .abs()
+                    .max_element()
+            })
+            .fold(0.0, f64::max)
+    };
+    let (a, b) = (reach(&near, 0.0), reach(&far, scenes::FAR));
+    assert!((a - b).abs() <= 0.2, "{a} against {b}");
+    for d in far.iter().filter(|d| !d.fixed) {
+        assert!((d.velocity.length() - 1.0).abs() < 1e-12);
+    }
+}

@@ -55,3 +55,40 @@ fn a_gas_far_from_the_origin_misses_no_collision() {
         }
     }
 }
+
+/// Past the cells a grid counted from the origin can number (2e8 m out, in cells of about
+/// 0.15 m: some 1.3e9 cells), the broad phase counts them from among the spheres instead (it
+/// clamped them all to one and compared every two spheres: the same collisions, 28 times
+/// slower for 2000). Checked here: the cells counted so still find every collision.
+#[test]
+fn a_gas_past_two_billion_cells_from_the_origin_misses_no_collision() {
+    for offset in [[2.0e8, -2.0e8, 2.0e8], [-2.0e8, 1.0, 0.0]] {
+        let mut world = gas_at(offset).build().unwrap();
+        let energy = world.kinetic_energy();
+        let mut collisions = 0;
+        for _ in 0..120 {
+            let stats = *world.step(1.0 / 60.0).unwrap();
+            collisions += stats.collisions;
+            // Positions there are resolved to 3e-8 m.
+            assert!(
+                stats.max_overlap <= 1e-6,
+                "at {offset:?}: overlap {}",
+                stats.max_overlap
+            );
+            assert_eq!(stats.collisions_deferred, 0);
+        }
+        assert!(collisions > 500, "at {offset:?}: {collisions} collisions");
+        let drift = (world.kinetic_energy() - energy).abs() / energy;
+        assert!(drift <= 1e-9, "at {offset:?}: energy drift {drift}");
+        for body in world.bodies().iter().filter(|b| !b.is_fixed()) {
+            for (a, centre) in offset.iter().enumerate() {
+                let reach = 1.5 - body.radius() + 2e-4;
+                assert!(
+                    (body.position()[a] - centre).abs() <= reach,
+                    "at {offset:?}: {:?}",
+                    body.position()
+                );
+            }
+        }
+    }
+}

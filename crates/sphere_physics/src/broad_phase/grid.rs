@@ -44,6 +44,8 @@ pub(crate) type Cell = [i32; 3];
 /// The dense grid (see the module docs). Keeps its buffers between steps.
 #[derive(Debug, Default)]
 pub(crate) struct Grid {
+    /// Where cell (0, 0, 0)'s low corner is (see [`BroadPhase::sort`](super::BroadPhase)).
+    origin: DVec3,
     /// The cell's sides: the typical box per axis (falling spheres sweep tall boxes).
     cell: DVec3,
     inverse: DVec3,
@@ -125,6 +127,11 @@ fn corner_of(k: Cell) -> DVec3 {
 }
 
 impl Grid {
+    /// Counts cells from `origin` (cell (0, 0, 0)'s low corner).
+    pub fn set_origin(&mut self, origin: DVec3) {
+        self.origin = origin;
+    }
+
     /// Sets the cell's sides: boxes up to `largest` (per axis) fit their cell's envelope.
     pub fn set_cell(&mut self, largest: DVec3) {
         self.cell = largest * (1.0 + 1e-5);
@@ -135,7 +142,7 @@ impl Grid {
     /// The cell whose envelope holds `b`, if the box is no larger than the cell allows.
     #[inline]
     pub fn cell_of(&self, b: &Aabb) -> Option<Cell> {
-        let centre = (b.lo + b.hi) * 0.5;
+        let centre = (b.lo + b.hi) * 0.5 - self.origin;
         let k = [
             floor_i32(centre.x * self.inverse.x),
             floor_i32(centre.y * self.inverse.y),
@@ -149,8 +156,8 @@ impl Grid {
     #[inline]
     fn within(&self, b: &Aabb, k: Cell) -> bool {
         let k = corner_of(k);
-        let lo = k * self.cell - self.slack;
-        let hi = (k + 1.0) * self.cell + self.slack;
+        let lo = k * self.cell - self.slack + self.origin;
+        let hi = (k + 1.0) * self.cell + self.slack + self.origin;
         (b.lo.cmpge(lo) & b.hi.cmple(hi)).all()
     }
 
@@ -181,7 +188,7 @@ impl Grid {
         let ends = self.axes.each_ref().map(Squeeze::ends);
         let first = ends.map(|(first, _)| first);
         let span = ends.map(|(first, last)| (i64::from(last) - i64::from(first) + 1) as usize);
-        self.frame = Frame::new(corner_of(first) * self.cell, self.cell, span);
+        self.frame = Frame::new(corner_of(first) * self.cell + self.origin, self.cell, span);
         let frame = &self.frame;
         self.boxes.clear();
         self.boxes.reserve(boxes.len() + BLOCK);
@@ -442,8 +449,9 @@ impl Grid {
             // Cell k's envelope [k·cell − slack, (k+1)·cell + slack] overlaps [lo, hi] when
             // (lo − slack)/cell − 1 <= k <= (hi + slack)/cell; padded against rounding.
             // ceil(v) = -floor(-v)
-            let lo = -floor_i32(-((q.lo[a] - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7));
-            let hi = floor_i32((q.hi[a] + self.slack[a]) * self.inverse[a] + 1e-7);
+            let (qlo, qhi) = (q.lo[a] - self.origin[a], q.hi[a] - self.origin[a]);
+            let lo = -floor_i32(-((qlo - self.slack[a]) * self.inverse[a] - 1.0 - 1e-7));
+            let hi = floor_i32((qhi + self.slack[a]) * self.inverse[a] + 1e-7);
             let (first, last) = self.axes[a].ends();
             let (lo, hi) = (lo.max(first), hi.min(last));
             if lo > hi {

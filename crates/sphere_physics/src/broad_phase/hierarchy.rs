@@ -56,6 +56,8 @@ struct CellKey {
 /// The hierarchical grid (see the module docs). Keeps its buffers between steps.
 #[derive(Debug, Default)]
 pub(crate) struct Hierarchy {
+    /// Where every level's cell (0, 0, 0) has its low corner (the grid's origin).
+    origin: DVec3,
     cells: Vec<f64>,
     inverse_cells: Vec<f64>,
     /// Level-0 buckets are `2^bits` per axis.
@@ -110,10 +112,12 @@ const FEW: usize = 16;
 const HELD_FEW: usize = 64;
 
 impl Hierarchy {
-    /// Rebuilds the grid with level-0 cells of side `base`, holding the bodies `held..` of
-    /// `boxes`; bodies `..held` may join later through [`Hierarchy::update`].
-    pub fn rebuild(&mut self, boxes: &[Aabb], held: usize, base: f64) {
+    /// Rebuilds the grid with level-0 cells of side `base` counted from `origin`, holding the
+    /// bodies `held..` of `boxes`; bodies `..held` may join later through
+    /// [`Hierarchy::update`].
+    pub fn rebuild(&mut self, boxes: &[Aabb], held: usize, base: f64, origin: DVec3) {
         let n = boxes.len();
+        self.origin = origin;
         self.cells.clear();
         self.inverse_cells.clear();
         for level in 0..LEVELS {
@@ -254,6 +258,7 @@ impl Hierarchy {
     #[inline]
     fn key_at(&self, level: u32, point: DVec3) -> CellKey {
         let inverse = self.inverse_cells[level as usize];
+        let point = point - self.origin;
         CellKey {
             level,
             x: floor_i32(point.x * inverse),

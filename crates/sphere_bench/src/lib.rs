@@ -169,8 +169,8 @@ pub fn measure_ours(
 #[cfg(feature = "rapier")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RapierSetting {
-    /// CCD on every dynamic body, or off for the whole world.
-    pub ccd: bool,
+    /// Continuous collision detection: rapier's default, bullets, or off.
+    pub ccd: rapier_peer::RapierCcd,
     /// Solver iterations (rapier's default is 4; its docs suggest 1 or 2 where speed matters
     /// more than accuracy).
     pub iterations: usize,

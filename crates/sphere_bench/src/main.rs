@@ -3,7 +3,7 @@
 //!
 //!     cargo run --release -p sphere_bench --features rapier -- [--sizes 1000,10000,100000]
 //!         [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse,table] [--repeat 1] [--phases]
-//!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep]
+//!         [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--rapier-bullets] [--sleep]
 //!         [--bouncer]
 //!
 //! Each run steps once untimed (both engines build their structures on the first step; with
@@ -25,7 +25,11 @@
 //! rapier's solver iterations (default 4, rapier's own default) and `length_unit` (default
 //! 0.1, the spheres' diameter: 1.0, rapier's default for metres, made it 2.3x to 2.7x
 //! slower here) can be changed to look for its fastest setting, and `--rapier-flat-walls`
-//! gives rapier the gas's six wall spheres as half-spaces, its own shape for a wall.
+//! gives rapier the gas's six wall spheres as half-spaces, its own shape for a wall. rapier's
+//! "CCD" column is its default (every fast body swept against the fixed colliders), its
+//! "no CCD" none at all; `--rapier-bullets` makes every sphere a bullet in the CCD column
+//! instead, as the tables did until the fifty-sixth session: the same sweeps here (rapier
+//! sweeps no bullet against another), dearer (see `rapier_peer::RapierCcd`).
 //!
 //! rapier's bodies fall asleep at rest (its default); ours do with `--sleep` (sleeping is off
 //! by default in our engine; `--sleep` turns on `Settings::sleep` with `Sleep::default()`),
@@ -59,6 +63,9 @@ struct Options {
     /// The gas's walls as rapier half-spaces.
     #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
     rapier_flat_walls: bool,
+    /// rapier's CCD column with every sphere a bullet, not rapier's default.
+    #[cfg_attr(not(feature = "rapier"), allow(dead_code))]
+    rapier_bullets: bool,
     /// Our engine with sleeping on (`Sleep::default()`), as rapier's is by default.
     sleep: bool,
     /// A ball bouncing for ever above each scene (`scenes::add_bouncer`).
@@ -89,6 +96,7 @@ fn parse() -> Result<Options, String> {
         rapier_iterations: 4,
         rapier_length_unit: 2.0 * scenes::RADIUS,
         rapier_flat_walls: false,
+        rapier_bullets: false,
         sleep: false,
         bouncer: false,
     };
@@ -130,11 +138,12 @@ fn parse() -> Result<Options, String> {
                     .ok_or("--rapier-length-unit needs a positive number")?
             }
             "--rapier-flat-walls" => options.rapier_flat_walls = true,
+            "--rapier-bullets" => options.rapier_bullets = true,
             "--sleep" => options.sleep = true,
             "--bouncer" => options.bouncer = true,
             "--help" | "-h" => {
                 println!(
-                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse,table] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--sleep] [--bouncer]"
+                    "sphere-bench [--sizes 1000,10000,100000] [--steps 60] [--settle 1] [--scenes shower,gas,pile,showers,apart,sparse,table] [--repeat 1] [--phases] [--per-step] [--rapier-iterations 4] [--rapier-length-unit 0.1] [--rapier-flat-walls] [--rapier-bullets] [--sleep] [--bouncer]"
                 );
                 std::process::exit(0);
             }
@@ -186,13 +195,21 @@ fn main() {
     );
     if rapier {
         println!(
-            "rapier: {} solver iterations, length_unit {}, walls as {}.\n",
+            "rapier: {} solver iterations, length_unit {}, walls as {}; CCD: {} (no CCD: \
+             none at all).\n",
             options.rapier_iterations,
             options.rapier_length_unit,
             if options.rapier_flat_walls {
                 "half-spaces"
             } else {
                 "balls"
+            },
+            if options.rapier_bullets {
+                "every sphere a bullet (the same sweeps as rapier's default here, through \
+                 the whole tree)"
+            } else {
+                "rapier's default (fast bodies swept against fixed colliders; making every \
+                 sphere a bullet adds no sweep, as rapier sweeps no bullet against another)"
             }
         );
         println!(
@@ -234,6 +251,7 @@ fn main() {
                 );
                 #[cfg(feature = "rapier")]
                 {
+                    use sphere_bench::rapier_peer::RapierCcd;
                     let rapier = |ccd| {
                         sphere_bench::measure_rapier(
                             &scene,
@@ -248,8 +266,13 @@ fn main() {
                             },
                         )
                     };
-                    keep_faster(&mut ccd, rapier(true));
-                    keep_faster(&mut plain, rapier(false));
+                    let on = if options.rapier_bullets {
+                        RapierCcd::Bullets
+                    } else {
+                        RapierCcd::Default
+                    };
+                    keep_faster(&mut ccd, rapier(on));
+                    keep_faster(&mut plain, rapier(RapierCcd::Off));
                 }
             }
             let ours = ours.expect("at least one run");

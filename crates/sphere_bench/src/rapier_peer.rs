@@ -10,6 +10,25 @@ use rapier3d::prelude::{
     PhysicsPipeline, Real, RigidBodyBuilder, RigidBodyHandle, RigidBodySet, SoftBodySet, Vector,
 };
 
+/// How rapier's continuous collision detection is set for a run.
+///
+/// In rapier 0.36 every dynamic body moving fast for its size is swept within its step;
+/// `ccd_enabled` only widens what it is swept against. By default (no body asking) against
+/// fixed colliders, from a cached list of them; a body with `ccd_enabled` (a "bullet")
+/// against every collider but other bullets, through the whole broad-phase tree. With every
+/// sphere a bullet, as here, a bullet is swept against nothing a default body is not: the same
+/// protection at a higher price. rapier sweeps no sphere against another in either.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RapierCcd {
+    /// Rapier's default: fast bodies swept against fixed colliders.
+    Default,
+    /// Every dynamic body a bullet (`ccd_enabled`).
+    Bullets,
+    /// None at all (`max_ccd_substeps: 0`; by default rapier sweeps fast bodies against fixed
+    /// colliders even where no body asked for CCD).
+    Off,
+}
+
 /// One sphere of the scene, as handed to rapier.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RapierSphere {
@@ -47,10 +66,8 @@ pub struct RapierConfig {
     pub gravity: [f64; 3],
     /// Time step of one [`RapierWorld::step`].
     pub dt: f64,
-    /// CCD on every dynamic body (each a "bullet", swept against every other collider);
-    /// `false` turns CCD off for the world, including rapier's automatic CCD of fast bodies
-    /// against fixed colliders (`max_ccd_substeps: 0`).
-    pub ccd: bool,
+    /// Continuous collision detection (see [`RapierCcd`]).
+    pub ccd: RapierCcd,
     /// Rapier's `IntegrationParameters::length_unit`, which scales its tolerances (0.36's docs:
     /// how many world units make a metre; the benches use the spheres' diameter, faster).
     pub length_unit: f64,
@@ -144,7 +161,7 @@ impl RapierWorld {
             let builder = if sphere.fixed {
                 RigidBodyBuilder::fixed()
             } else {
-                RigidBodyBuilder::dynamic().ccd_enabled(config.ccd)
+                RigidBodyBuilder::dynamic().ccd_enabled(config.ccd == RapierCcd::Bullets)
             };
             let body = builder
                 .translation(to_vector(place))
@@ -174,7 +191,7 @@ impl RapierWorld {
             normalized_max_linear_velocity: Real::MAX,
             // rapier's global CCD switch: by default (1) fast bodies are swept against fixed
             // colliders even where no body asked for CCD.
-            max_ccd_substeps: usize::from(config.ccd),
+            max_ccd_substeps: usize::from(config.ccd != RapierCcd::Off),
             ..IntegrationParameters::default()
         };
 

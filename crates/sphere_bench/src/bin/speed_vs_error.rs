@@ -105,7 +105,7 @@ mod peer {
             &RapierConfig {
                 gravity: scene.gravity.to_array(),
                 dt,
-                ccd: true,
+                ccd: sphere_bench::rapier_peer::RapierCcd::Bullets,
                 length_unit: 2.0 * smallest,
                 solver_iterations: iterations,
                 flat_walls: false,

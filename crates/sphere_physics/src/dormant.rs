@@ -93,8 +93,9 @@ pub(crate) struct Dormant {
     /// with a new generation).
     awake: Vec<u32>,
     /// The deepest overlap of a pair with a body left out, and the generation and the
-    /// islands taken into the step it was worked out for (the same bodies left out: a body
-    /// added, changed or removed that would change it touches one of them, and wakes it).
+    /// islands taken into the step it was worked out for (the same bodies left out: a fixed
+    /// body added, changed or removed that would change it touches one of them, and wakes it;
+    /// a dynamic one is within the reach of the bodies taken, or in their islands).
     overlap: f64,
     overlap_for: Option<(u64, Vec<u64>)>,
     /// The potential energy of the bodies left out (for the same choice as `overlap`).

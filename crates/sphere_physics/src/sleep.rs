@@ -8,8 +8,9 @@ use crate::Body;
 use crate::solver::Solver;
 
 /// How near two spheres must be to count as touching when bodies are grouped to fall asleep
-/// together, or woken by a fixed sphere changed near them: this fraction of the smaller radius
-/// apart (or closer).
+/// together (this fraction of the smaller radius apart, or closer), or to be woken (and,
+/// awake, made calm from then on only) by a fixed sphere added, changed or removed near them
+/// (this fraction of their own radius).
 pub const SLEEP_CONTACT: f64 = 0.05;
 
 /// When bodies fall asleep: see [`Settings::sleep`](crate::Settings::sleep).
@@ -80,8 +81,9 @@ pub(crate) struct Sleeper {
     /// The earliest time at which groups are formed again.
     next_check: f64,
     /// Changes whenever a body falls asleep or wakes: what `Dormant` keeps of the bodies
-    /// asleep holds while it does not. (A body added, changed or removed that touches a body
-    /// asleep wakes it.)
+    /// asleep holds while it does not. (A fixed body added, changed or removed that touches a
+    /// body asleep wakes it; a dynamic one wakes its own island, and one added touching a body
+    /// asleep joins the step through the islands within its reach.)
     generation: u64,
     /// Every dynamic body asleep and no fixed one moving since the last step, and nothing
     /// changed since through the world: the next step has nothing to do.
@@ -315,18 +317,23 @@ impl Sleeper {
     }
 
     /// Wakes the islands of the sleeping bodies touching (see [`SLEEP_CONTACT`]) a sphere of
-    /// `radius` at `centre`: a fixed sphere added, removed or changed there.
-    pub fn wake_around(&mut self, bodies: &mut [Body], centre: DVec3, radius: f64) {
-        if self.asleep == 0 {
+    /// `radius` at `centre`: a fixed sphere added, removed or changed there. With `sleeping`
+    /// on, the awake bodies touching it are calm from now on only: one resting on a floor
+    /// moved away, or removed, had kept the calm it gathered on it, and fell asleep in the
+    /// air, near enough to the floor's new place to seem to rest on it.
+    pub fn wake_around(&mut self, bodies: &mut [Body], centre: DVec3, radius: f64, sleeping: bool) {
+        if self.asleep == 0 && !sleeping {
             return;
         }
-        self.wake.extend(
-            bodies
-                .iter()
-                .zip(&self.states)
-                .filter(|(b, _)| b.asleep && gap(b, centre, radius) <= SLEEP_CONTACT * b.radius())
-                .map(|(_, state)| state.island),
-        );
+        for (body, state) in bodies.iter().zip(&mut self.states) {
+            if gap(body, centre, radius) <= SLEEP_CONTACT * body.radius() {
+                if body.asleep {
+                    self.wake.push(state.island);
+                } else {
+                    state.calm = 0.0;
+                }
+            }
+        }
         self.wake_islands(bodies);
     }
 

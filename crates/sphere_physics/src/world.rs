@@ -108,7 +108,8 @@ pub struct Settings {
     /// it is changed or removed through the world ([`World::set_desc`],
     /// [`World::set_velocity`], [`World::set_position`], [`World::set_force`],
     /// [`World::remove_body`], or [`World::wake`]), when a fixed sphere touching it is added,
-    /// changed or removed, and when gravity changes or sleeping is turned off. A world whose
+    /// changed or removed, and at the next step after gravity changes or sleeping is turned
+    /// off (until then [`Body::is_asleep`] still tells of the last step). A world whose
     /// dynamic bodies are all asleep, with no fixed body moving, takes its steps without work
     /// ([`StepStats::quiet`]). [`Body::is_asleep`] and [`StepStats::asleep`] tell.
     pub sleep: Option<Sleep>,
@@ -384,7 +385,9 @@ impl World {
         let body = &self.bodies[index];
         if body.is_fixed() {
             let (centre, radius) = (body.position(), body.radius());
-            self.sleeper.wake_around(&mut self.bodies, centre, radius);
+            let sleeping = self.settings.sleep.is_some();
+            self.sleeper
+                .wake_around(&mut self.bodies, centre, radius, sleeping);
         } else {
             self.sleeper.wake_island_of(&mut self.bodies, index);
             // Awake, it is calm from now on only (moved, say, near a floor it would never
@@ -470,8 +473,9 @@ impl World {
         }
         if body.is_fixed() && field == Field::Position {
             // What touched it where it was (and, below, what touches it where it is).
-            let radius = body.radius();
-            self.sleeper.wake_around(&mut self.bodies, previous, radius);
+            let (radius, sleeping) = (body.radius(), self.settings.sleep.is_some());
+            self.sleeper
+                .wake_around(&mut self.bodies, previous, radius, sleeping);
         }
         self.woken_by(index);
         Ok(())

@@ -34,7 +34,9 @@ pub struct SphereCollision {
 pub struct SphereHit {
     /// The sphere the observer watches.
     pub entity: Entity,
-    /// The sphere it collided with.
+    /// The sphere it collided with. An observer of the other sphere's hit, triggered first,
+    /// may have despawned it: the hit on `entity` is still triggered (a bullet that despawns
+    /// itself on a hit still hits its target).
     pub other: Entity,
     /// Simulated time of the impact.
     pub time: f64,

@@ -824,15 +824,43 @@ fn regression_no_hits_for_despawned_spheres() {
         seen.hits
     );
 
-    // An observer of the first hit despawns its sphere: the second hit, naming it, is not
-    // triggered.
+    // Regression (found by a later review): an observer of the first hit despawns its
+    // sphere (a bullet), and the second hit, on the other sphere (its target), was dropped
+    // because it named the despawned one: whether a target heard of its hit depended on the
+    // order the two were spawned in. Each sphere alive when its hit comes is told, in either
+    // order.
+    for bullet_first in [true, false] {
+        let mut app = self::app(SpherePhysicsPlugin::default());
+        app.init_resource::<Seen>();
+        let (a, b) = head_on(&mut app);
+        let (bullet, target) = if bullet_first { (a, b) } else { (b, a) };
+        app.world_mut()
+            .entity_mut(bullet)
+            .observe(|hit: On<SphereHit>, mut commands: Commands| {
+                commands.entity(hit.entity).despawn();
+            });
+        app.world_mut()
+            .entity_mut(target)
+            .observe(|hit: On<SphereHit>, mut seen: ResMut<Seen>| {
+                seen.hits.push((hit.entity, hit.other));
+            });
+        run_steps(&mut app, 1);
+        assert!(app.world().get_entity(bullet).is_err());
+        let seen = app.world().resource::<Seen>();
+        assert_eq!(
+            seen.hits,
+            [(target, bullet)],
+            "bullet first: {bullet_first}"
+        );
+    }
+    // A sphere despawned by an observer before its own hit comes is not told of it.
     let mut app = self::app(SpherePhysicsPlugin::default());
     app.init_resource::<Seen>()
         .add_observer(|hit: On<SphereHit>, mut seen: ResMut<Seen>| {
             seen.hits.push((hit.entity, hit.other));
         })
         .add_observer(|hit: On<SphereHit>, mut commands: Commands| {
-            commands.entity(hit.entity).despawn();
+            commands.entity(hit.other).despawn();
         });
     let (a, b) = head_on(&mut app);
     run_steps(&mut app, 1);

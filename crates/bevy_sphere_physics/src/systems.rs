@@ -810,10 +810,11 @@ pub(crate) fn notify(
 type Shown = (With<SphereHandle>, With<SphereBody>);
 
 /// What `interpolate` reads and writes of each: its last two positions (with their change
-/// ticks), its `Transform`, and whether it opted out.
+/// ticks), its body, its `Transform`, and whether it opted out.
 type ShownSphere = (
     Ref<'static, SpherePosition>,
     Ref<'static, PreviousSpherePosition>,
+    &'static SphereHandle,
     &'static mut Transform,
     Has<NoInterpolation>,
 );
@@ -821,11 +822,13 @@ type ShownSphere = (
 /// After the fixed steps of a frame: each sphere's `Transform` between its last two physics
 /// positions, by how far the fixed clock has run into the next step (and the simulated time
 /// that shows, in [`SphereShownTime`]).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn interpolate(
     time: Res<Time<Fixed>>,
     options: Res<PluginOptions>,
     stepped: Res<Stepped>,
     diagnostics: Res<SpherePhysicsDiagnostics>,
+    physics: Res<SpherePhysicsWorld>,
     mut shown: ResMut<SphereShownTime>,
     mut spheres: Query<ShownSphere, Shown>,
     ticks: SystemChangeTick,
@@ -838,12 +841,18 @@ pub(crate) fn interpolate(
         diagnostics.time
     };
     shown.set_if_neq(SphereShownTime(time_shown));
-    for (position, previous, mut transform, opted_out) in &mut spheres {
-        // `Writeback` sets both at once; a position written later was the game's (a teleport):
-        // shown where it was put, not slid to from where the sphere was.
+    for (position, previous, handle, mut transform, opted_out) in &mut spheres {
+        // `Writeback` sets both at once, the position to its body's; a position written later
+        // to another place was the game's (a teleport): shown where it was put, not slid to
+        // from where the sphere was. Written back unchanged (a clamp that held), it is no
+        // teleport (until the fifty-sixth session it was, and the sphere jumped).
         let teleported = position
             .last_changed()
-            .is_newer_than(previous.last_changed(), ticks.this_run());
+            .is_newer_than(previous.last_changed(), ticks.this_run())
+            && physics
+                .world
+                .body(handle.0)
+                .is_none_or(|body| body.position() != position.0);
         let at: DVec3 = if options.interpolate && !opted_out && !teleported {
             previous.0.lerp(position.0, fraction)
         } else {

@@ -282,6 +282,44 @@ fn transforms_are_interpolated_between_fixed_steps() {
     assert_eq!(f64::from(jumped), position(&app, jumping).x as f32 as f64);
 }
 
+/// Regression (found by review): a game system writing a sphere's `SpherePosition` back
+/// unchanged after `Writeback` (a clamp to an arena that held) turned its interpolation off:
+/// the change was judged by its tick alone, as a teleport, and the sphere shown at the end of
+/// the last step, jumping on every frame.
+#[test]
+fn regression_a_position_written_back_unchanged_is_still_interpolated() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.add_systems(
+        FixedUpdate,
+        (|mut spheres: Query<&mut SpherePosition>| {
+            for mut position in &mut spheres {
+                position.0.y = position.0.y.max(-10.0);
+            }
+        })
+        .after(SpherePhysicsSystems::Writeback),
+    );
+    let moving = app
+        .world_mut()
+        .spawn((SphereBody::new(0.1), SphereVelocity(DVec3::X)))
+        .id();
+    run_steps(&mut app, 4);
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP * 3 / 2));
+    app.update();
+    let fraction = app
+        .world()
+        .resource::<Time<Fixed>>()
+        .overstep_fraction_f64();
+    assert!(fraction > 0.0 && fraction < 1.0, "overstep {fraction}");
+    let current = position(&app, moving).x;
+    let previous = app.world().get::<PreviousSpherePosition>(moving).unwrap().x;
+    let shown = app.world().get::<Transform>(moving).unwrap().translation.x;
+    let expected = previous + (current - previous) * fraction;
+    assert!(
+        (f64::from(shown) - expected).abs() < 1e-6,
+        "{shown} vs {expected} (the step's end {current})"
+    );
+}
+
 /// A sphere of radius 0.5 spawned at `at`, moving at `velocity`.
 fn ball(app: &mut App, at: DVec3, velocity: DVec3) -> Entity {
     app.world_mut()

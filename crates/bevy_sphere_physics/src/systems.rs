@@ -299,18 +299,8 @@ pub(crate) fn prepare(
         | (physics.world.stats().asleep == 0);
     let physics = physics.bypass_change_detection();
     rejected.write_batch(runaways.0.drain(..));
-    // The last body first: removing a body moves every body after it down one place, so
-    // thousands despawned together (a level left, in the order they were spawned) moved the
-    // rest once each, in quadratic time; from the last, nothing is moved. The world ends the
-    // same in any order.
-    removed
-        .0
-        .sort_unstable_by_key(|entity| std::cmp::Reverse(physics.bodies.get(entity).copied()));
+    remove_bodies(physics, &mut removed.0);
     for entity in removed.0.drain(..) {
-        if let Some(id) = physics.bodies.remove(&entity) {
-            physics.world.remove_body(id);
-            physics.entities.remove(&id);
-        }
         // The entity may live on without its `SphereBody`: its `Transform` is the game's
         // again (interpolation writes only spheres with a handle). A no-op if despawned.
         commands
@@ -499,6 +489,7 @@ pub(crate) fn step(
     mut runaways: ResMut<RunawaySpheres>,
     mut last_refusal: Local<Option<String>>,
     time: Res<Time<Fixed>>,
+    mut removed: ResMut<RemovedSpheres>,
 ) {
     stepped.0 = clock.take_step();
     if !stepped.0 {
@@ -507,6 +498,11 @@ pub(crate) fn step(
     let started = Instant::now();
     // The plugin's own change: not one `Prepare` must look at every sphere for.
     let physics = physics.bypass_change_detection();
+    // Spheres despawned (or no longer spheres) since `Prepare`, by a game system before this
+    // one, are out of this step already (until the fifty-sixth session they still collided in
+    // it, and the collision went unreported). `Prepare` does the rest for them, as for any
+    // sphere removed.
+    remove_bodies(physics, &mut removed.0);
     // Each retry leaves one sphere out, so this ends; the bound only caps one step's work.
     let mut result = physics.world.step(time.delta_secs_f64()).copied();
     for _ in 0..64 {
@@ -670,6 +666,21 @@ pub(crate) fn writeback(
         tracked,
     };
     *still = !wrote;
+}
+
+/// Takes the bodies of `entities` (spheres despawned, or that lost their `SphereBody`) out of
+/// the world, if they are still in it. The last body first: removing a body moves every body
+/// after it down one place, so thousands despawned together (a level left, in the order they
+/// were spawned) moved the rest once each, in quadratic time (10 000: 314 ms against 18);
+/// from the last, nothing is moved. The world ends the same in any order.
+fn remove_bodies(physics: &mut SpherePhysicsWorld, entities: &mut [Entity]) {
+    entities.sort_unstable_by_key(|entity| std::cmp::Reverse(physics.bodies.get(entity).copied()));
+    for entity in entities.iter() {
+        if let Some(id) = physics.bodies.remove(entity) {
+            physics.world.remove_body(id);
+            physics.entities.remove(&id);
+        }
+    }
 }
 
 /// Whether a sphere's position was changed `late` by the game (see `writeback`), from the

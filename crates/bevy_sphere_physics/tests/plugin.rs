@@ -907,6 +907,45 @@ fn regression_no_hits_for_despawned_spheres() {
     assert!([(a, b), (b, a)].contains(&seen.hits[0]));
 }
 
+/// Regression (found by review): a sphere despawned by a game system between `Prepare` and
+/// `Step` (an unordered "bullet lifetime" system may run there) still collided in that step:
+/// its body was removed only at the next `Prepare`. The other sphere bounced off nothing, and
+/// the collision went unreported (its sphere was gone).
+#[test]
+fn regression_a_sphere_despawned_after_prepare_is_out_of_that_step() {
+    #[derive(Resource)]
+    struct Doomed(Option<Entity>);
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Seen>().add_systems(
+        FixedUpdate,
+        (
+            (|mut commands: Commands, mut doomed: ResMut<Doomed>| {
+                if let Some(e) = doomed.0.take() {
+                    commands.entity(e).despawn();
+                }
+            })
+            .after(SpherePhysicsSystems::Prepare)
+            .before(SpherePhysicsSystems::Step),
+            (|mut reader: MessageReader<SphereCollision>, mut seen: ResMut<Seen>| {
+                seen.messages.extend(reader.read().copied());
+            })
+            .after(SpherePhysicsSystems::Notify),
+        ),
+    );
+    app.insert_resource(Doomed(None));
+    // 1 m apart, closing at 20 m/s: they would meet early in the fourth step of 1/64 s.
+    let a = ball(&mut app, DVec3::new(-1.0, 0.0, 0.0), DVec3::X * 10.0);
+    let b = ball(&mut app, DVec3::new(1.0, 0.0, 0.0), -DVec3::X * 10.0);
+    run_steps(&mut app, 3);
+    assert_eq!(velocity(&app, b), -DVec3::X * 10.0, "nothing met yet");
+    app.insert_resource(Doomed(Some(a)));
+    run_steps(&mut app, 1);
+    assert!(app.world().get_entity(a).is_err());
+    assert_eq!(velocity(&app, b), -DVec3::X * 10.0, "b struck nothing");
+    assert!(app.world().resource::<Seen>().messages.is_empty());
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+}
+
 /// Regression (found by review): a reset left a rejected sphere out of the new world for good
 /// (its rejection stood, though the new settings would take it), and left the `Transform` of
 /// an entity whose `SphereBody` had just been removed to the plugin.

@@ -261,23 +261,7 @@ fn transforms_are_interpolated_between_fixed_steps() {
         ))
         .id();
     run_steps(&mut app, 4);
-    // Frames of 1.5 fixed steps: the fixed clock runs half a step into the next one.
-    app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP * 3 / 2));
-    app.update();
-    let fraction = app
-        .world()
-        .resource::<Time<Fixed>>()
-        .overstep_fraction_f64();
-    assert!(fraction > 0.0 && fraction < 1.0, "overstep {fraction}");
-    let current = position(&app, moving).x;
-    let previous = app.world().get::<PreviousSpherePosition>(moving).unwrap().x;
-    let shown = app.world().get::<Transform>(moving).unwrap().translation.x;
-    let expected = previous + (current - previous) * fraction;
-    assert!(
-        (f64::from(shown) - expected).abs() < 1e-6,
-        "{shown} vs {expected}"
-    );
-    assert!(f64::from(shown) < current);
+    shown_between_its_last_two_positions(&mut app, moving);
     let jumped = app.world().get::<Transform>(jumping).unwrap().translation.x;
     assert_eq!(f64::from(jumped), position(&app, jumping).x as f32 as f64);
 }
@@ -303,6 +287,13 @@ fn regression_a_position_written_back_unchanged_is_still_interpolated() {
         .spawn((SphereBody::new(0.1), SphereVelocity(DVec3::X)))
         .id();
     run_steps(&mut app, 4);
+    shown_between_its_last_two_positions(&mut app, moving);
+}
+
+/// Runs a frame of 1.5 fixed steps (the fixed clock half a step into the next one), and
+/// checks `moving` (along x) is shown between its last two physics positions, by the fixed
+/// clock's overstep, short of the last.
+fn shown_between_its_last_two_positions(app: &mut App, moving: Entity) {
     app.insert_resource(TimeUpdateStrategy::ManualDuration(STEP * 3 / 2));
     app.update();
     let fraction = app
@@ -310,7 +301,7 @@ fn regression_a_position_written_back_unchanged_is_still_interpolated() {
         .resource::<Time<Fixed>>()
         .overstep_fraction_f64();
     assert!(fraction > 0.0 && fraction < 1.0, "overstep {fraction}");
-    let current = position(&app, moving).x;
+    let current = position(app, moving).x;
     let previous = app.world().get::<PreviousSpherePosition>(moving).unwrap().x;
     let shown = app.world().get::<Transform>(moving).unwrap().translation.x;
     let expected = previous + (current - previous) * fraction;
@@ -318,6 +309,7 @@ fn regression_a_position_written_back_unchanged_is_still_interpolated() {
         (f64::from(shown) - expected).abs() < 1e-6,
         "{shown} vs {expected} (the step's end {current})"
     );
+    assert!(f64::from(shown) < current);
 }
 
 /// A sphere of radius 0.5 spawned at `at`, moving at `velocity`.

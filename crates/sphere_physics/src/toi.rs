@@ -85,32 +85,23 @@ impl TimeOfImpact for ExactToi {
         if half_b >= 0.0 {
             return none;
         }
-        let a = w.length_squared();
-        let disc = a * contact * contact - d.cross(w).length_squared();
+        let discriminant =
+            |w: DVec3| w.length_squared() * contact * contact - d.cross(w).length_squared();
+        let (mut half_b, mut disc, mut scale) = (half_b, discriminant(w), 1.0);
         if !disc.is_finite() {
             // Speed times distance overflowed: the same root in units where the relative
             // velocity is at most 1 a component, the time scaled back.
-            let scale = w.abs().max_element();
+            scale = w.abs().max_element();
             let unit = w / scale;
-            let half_b = d.dot(unit);
-            let disc = unit.length_squared() * contact * contact - d.cross(unit).length_squared();
-            if half_b >= 0.0 || disc < 0.0 || disc.is_nan() {
-                return none;
-            }
-            let distance = d.length();
-            let c = (distance - contact) * (distance + contact);
-            let t = c / (-half_b + disc.sqrt()) / scale;
-            return ToiOutcome {
-                time: (t <= t_max).then_some(t),
-                iterations: 0,
-            };
+            (half_b, disc) = (d.dot(unit), discriminant(unit));
         }
-        if disc < 0.0 {
+        if half_b >= 0.0 || disc < 0.0 || disc.is_nan() {
             return none;
         }
         let distance = d.length();
         let c = (distance - contact) * (distance + contact);
         let t = c / (-half_b + disc.sqrt());
+        let t = if scale == 1.0 { t } else { t / scale };
         ToiOutcome {
             time: (t <= t_max).then_some(t),
             iterations: 0,

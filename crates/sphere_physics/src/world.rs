@@ -239,7 +239,7 @@ pub enum WorldError {
     UnknownBody(BodyId),
     /// The time step is not finite and > 0 (or is subnormal: dividing by it overflows), or
     /// would take the world's clock ([`World::time`]) past the largest finite time, or is too
-    /// small against the clock to advance it (the clock is kept, not the step).
+    /// small against the clock to advance it (the spheres would move while it stood still).
     #[error(
         "time step must be finite, normal and > 0, and keep the clock finite and advancing, got {}",
         crate::Readable(*.0)

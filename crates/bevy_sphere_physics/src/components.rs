@@ -56,11 +56,24 @@ impl SpherePosition {
             return;
         };
         if let Some(mut transform) = world.get_mut::<Transform>(context.entity) {
-            let at = at.as_vec3();
+            let at = translation(at);
             if transform.translation != at {
                 transform.translation = at;
             }
         }
+    }
+}
+
+/// A physics position as a `Transform`'s translation (`f32`): beyond `f32`'s range (3.4e38 m,
+/// where the core goes on to 1e308) it stays at the range's edge, not infinite (an infinite
+/// translation turns a `GlobalTransform`, and what is worked out from it, to NaN). A position
+/// that is not finite (a game's, rejected) is converted as it is.
+pub(crate) fn translation(at: DVec3) -> Vec3 {
+    let edge = DVec3::splat(f64::from(f32::MAX));
+    if at.is_finite() {
+        at.clamp(-edge, edge).as_vec3()
+    } else {
+        at.as_vec3()
     }
 }
 

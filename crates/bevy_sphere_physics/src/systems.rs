@@ -869,7 +869,7 @@ pub(crate) fn interpolate(
         } else {
             position.0
         };
-        let at = at.as_vec3();
+        let at = translation(at);
         if transform.translation != at {
             transform.translation = at;
         }

@@ -312,6 +312,25 @@ fn shown_between_its_last_two_positions(app: &mut App, moving: Entity) {
     assert!(f64::from(shown) < current);
 }
 
+/// Regression (found by review): a sphere beyond `f32`'s range (3.4e38 m; the core takes
+/// positions to 1e308) was given an infinite translation, at its spawn and at every frame,
+/// which turns its `GlobalTransform` to NaN. It is shown at the range's edge.
+#[test]
+fn regression_a_sphere_beyond_f32_range_has_a_finite_translation() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let far = ball(&mut app, DVec3::new(1e39, -1e300, 0.0), DVec3::X);
+    let shown = |app: &App| app.world().get::<Transform>(far).unwrap().translation;
+    assert_eq!(shown(&app), Vec3::new(f32::MAX, -f32::MAX, 0.0));
+    run_steps(&mut app, 2);
+    assert_eq!(position(&app, far).x, 1e39);
+    assert_eq!(shown(&app), Vec3::new(f32::MAX, -f32::MAX, 0.0));
+    // Within the range, as ever.
+    let near = ball(&mut app, DVec3::new(1e38, 0.0, 0.0), DVec3::ZERO);
+    run_steps(&mut app, 1);
+    let at = app.world().get::<Transform>(near).unwrap().translation;
+    assert_eq!(at, Vec3::new(1e38, 0.0, 0.0));
+}
+
 /// A sphere of radius 0.5 spawned at `at`, moving at `velocity`.
 fn ball(app: &mut App, at: DVec3, velocity: DVec3) -> Entity {
     app.world_mut()

@@ -301,6 +301,12 @@ pub(crate) fn prepare(
     rejected.write_batch(runaways.0.drain(..));
     remove_bodies(physics, &mut removed.0);
     for entity in removed.0.drain(..) {
+        if spheres.contains(entity) {
+            // Its `SphereBody` was inserted again since: a new sphere from its components,
+            // which it keeps (registered below; until the fifty-sixth session they were
+            // stripped after that, and its velocity lost a step).
+            continue;
+        }
         // The entity may live on without its `SphereBody`: its `Transform` is the game's
         // again (interpolation writes only spheres with a handle). A no-op if despawned.
         commands

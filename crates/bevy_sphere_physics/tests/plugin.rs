@@ -331,6 +331,37 @@ fn regression_a_sphere_beyond_f32_range_has_a_finite_translation() {
     assert_eq!(at, Vec3::new(1e38, 0.0, 0.0));
 }
 
+/// Regression (found by review): a sphere whose `SphereBody` was removed and inserted again
+/// between two `Prepare`s (a game swapping its size, say) lost its `SpherePosition` for a
+/// step: the removal's clean-up was queued after `Prepare` had registered it again. Its
+/// velocity was not written back in that step, and the stale one was put back at the next:
+/// a step of gravity lost. It is now a new sphere from its components, which it keeps.
+#[test]
+fn regression_a_sphere_body_removed_and_inserted_again_keeps_its_components() {
+    let g = 9.81;
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * g));
+    let falling = ball(&mut app, DVec3::new(0.0, 10.0, 0.0), DVec3::ZERO);
+    run_steps(&mut app, 2);
+    let mut entity = app.world_mut().entity_mut(falling);
+    entity.remove::<SphereBody>();
+    entity.insert(SphereBody::new(0.25));
+    run_steps(&mut app, 1);
+    assert!(app.world().get::<SpherePosition>(falling).is_some());
+    assert!(app.world().get::<SphereHandle>(falling).is_some());
+    run_steps(&mut app, 1);
+    // Four steps of semi-implicit Euler from rest: four kicks of g·h.
+    let h = STEP.as_secs_f64();
+    let v = velocity(&app, falling).y;
+    assert!(
+        (v + 4.0 * g * h).abs() < 1e-12,
+        "{v} against {}",
+        -4.0 * g * h
+    );
+    let physics = app.world().resource::<SpherePhysicsWorld>();
+    assert_eq!(physics.world.len(), 1);
+    assert_eq!(physics.world.bodies()[0].radius(), 0.25);
+}
+
 /// A sphere of radius 0.5 spawned at `at`, moving at `velocity`.
 fn ball(app: &mut App, at: DVec3, velocity: DVec3) -> Entity {
     app.world_mut()

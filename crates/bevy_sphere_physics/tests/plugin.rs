@@ -844,13 +844,40 @@ fn regression_a_teleport_is_shown_at_once() {
     assert_eq!(position(&app, ball), target + DVec3::X * 2.0 / 64.0);
 }
 
+/// The sphere a game system despawns at its next run, if any.
+#[derive(Resource, Default)]
+struct Doomed(Option<Entity>);
+
+/// An app whose game system despawns the [`Doomed`] sphere between the sets `after` and
+/// `before`, and gathers the collision messages into [`Seen`].
+fn app_despawning_between(after: SpherePhysicsSystems, before: SpherePhysicsSystems) -> App {
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Seen>()
+        .init_resource::<Doomed>()
+        .add_systems(
+            FixedUpdate,
+            (
+                (|mut commands: Commands, mut doomed: ResMut<Doomed>| {
+                    if let Some(e) = doomed.0.take() {
+                        commands.entity(e).despawn();
+                    }
+                })
+                .after(after)
+                .before(before),
+                (|mut reader: MessageReader<SphereCollision>, mut seen: ResMut<Seen>| {
+                    seen.messages.extend(reader.read().copied());
+                })
+                .after(SpherePhysicsSystems::Notify),
+            ),
+        );
+    app
+}
+
 /// Regression (found by review): collision messages and hits named spheres a game had
 /// despawned after `Writeback` (or an observer of an earlier hit had despawned), so the
 /// game's handlers met dead entities.
 #[test]
 fn regression_no_hits_for_despawned_spheres() {
-    #[derive(Resource, Default)]
-    struct Doomed(Option<Entity>);
     let head_on = |app: &mut App| {
         let a = app
             .world_mut()
@@ -871,28 +898,13 @@ fn regression_no_hits_for_despawned_spheres() {
         (a, b)
     };
     // A game system after `Writeback` despawns one of the pair.
-    let mut app = app(SpherePhysicsPlugin::default());
-    app.init_resource::<Seen>()
-        .init_resource::<Doomed>()
-        .add_systems(
-            FixedUpdate,
-            (
-                (|mut commands: Commands, mut doomed: ResMut<Doomed>| {
-                    if let Some(e) = doomed.0.take() {
-                        commands.entity(e).despawn();
-                    }
-                })
-                .after(SpherePhysicsSystems::Writeback)
-                .before(SpherePhysicsSystems::Notify),
-                (|mut reader: MessageReader<SphereCollision>, mut seen: ResMut<Seen>| {
-                    seen.messages.extend(reader.read().copied());
-                })
-                .after(SpherePhysicsSystems::Notify),
-            ),
-        )
-        .add_observer(|hit: On<SphereHit>, mut seen: ResMut<Seen>| {
-            seen.hits.push((hit.entity, hit.other));
-        });
+    let mut app = app_despawning_between(
+        SpherePhysicsSystems::Writeback,
+        SpherePhysicsSystems::Notify,
+    );
+    app.add_observer(|hit: On<SphereHit>, mut seen: ResMut<Seen>| {
+        seen.hits.push((hit.entity, hit.other));
+    });
     let (a, _) = head_on(&mut app);
     app.world_mut().resource_mut::<Doomed>().0 = Some(a);
     run_steps(&mut app, 1);
@@ -955,26 +967,7 @@ fn regression_no_hits_for_despawned_spheres() {
 /// the collision went unreported (its sphere was gone).
 #[test]
 fn regression_a_sphere_despawned_after_prepare_is_out_of_that_step() {
-    #[derive(Resource)]
-    struct Doomed(Option<Entity>);
-    let mut app = app(SpherePhysicsPlugin::default());
-    app.init_resource::<Seen>().add_systems(
-        FixedUpdate,
-        (
-            (|mut commands: Commands, mut doomed: ResMut<Doomed>| {
-                if let Some(e) = doomed.0.take() {
-                    commands.entity(e).despawn();
-                }
-            })
-            .after(SpherePhysicsSystems::Prepare)
-            .before(SpherePhysicsSystems::Step),
-            (|mut reader: MessageReader<SphereCollision>, mut seen: ResMut<Seen>| {
-                seen.messages.extend(reader.read().copied());
-            })
-            .after(SpherePhysicsSystems::Notify),
-        ),
-    );
-    app.insert_resource(Doomed(None));
+    let mut app = app_despawning_between(SpherePhysicsSystems::Prepare, SpherePhysicsSystems::Step);
     // 1 m apart, closing at 20 m/s: they would meet early in the fourth step of 1/64 s.
     let a = ball(&mut app, DVec3::new(-1.0, 0.0, 0.0), DVec3::X * 10.0);
     let b = ball(&mut app, DVec3::new(1.0, 0.0, 0.0), -DVec3::X * 10.0);

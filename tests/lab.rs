@@ -5,6 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use scratch::Scratch;
+
 use bevy::input::ButtonState;
 use bevy::input::keyboard::{Key, KeyboardInput};
 use bevy::prelude::*;
@@ -13,6 +15,8 @@ use bevy_sphere_physics::SpherePhysicsWorld;
 use bevy_sphere_physics::prelude::*;
 use sphere_lab::stamp::{read_time_stamp, stamp_time, time_text};
 use sphere_lab::*;
+
+mod scratch;
 
 fn scene_folder() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes")
@@ -68,10 +72,8 @@ fn press(app: &mut App, key: KeyCode) {
     }
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sphere_lab_{}_{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+fn temp_dir(name: &str) -> Scratch {
+    Scratch::new("sphere_lab", name)
 }
 
 #[test]
@@ -317,7 +319,8 @@ fn wait_for_screenshots(app: &mut App) -> ScreenshotStatus {
 
 #[test]
 fn a_screenshot_is_saved_with_the_time_written_on_it() {
-    let dir = temp_dir("saved").join("created/if/missing");
+    let scratch = temp_dir("saved");
+    let dir = scratch.join("created/if/missing");
     let mut app = lab(LabPlugin {
         scene_folder: None,
         screenshots: ScreenshotSettings {
@@ -758,7 +761,6 @@ fn regression_a_scene_file_with_a_bad_sphere_or_setting_is_left_out_with_its_pat
         );
         assert_eq!(state(&app), ActiveScene::None);
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A scene file's `view` reaches the lab's scene (light_on_heavy frames its light ball's
@@ -791,7 +793,6 @@ fn a_scene_files_view_is_kept_and_a_bad_one_listed() {
         failure.contains(&upside.display().to_string()) && failure.contains("view"),
         "{failure}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Regression (found by review): a scene built in code with settings the core refuses (no
@@ -863,7 +864,6 @@ fn regression_screenshot_names_follow_the_order_taken() {
         std::fs::read(dir.join("sphere-lab-002.png")).unwrap(),
         b"kept"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Review of 2026-12-01: a ball dropped onto a planet-sized floor sphere (settling_ball,

@@ -11,6 +11,10 @@ use std::time::{Duration, Instant};
 use image::RgbaImage;
 use sphere_lab::stamp::read_time_stamp;
 
+use scratch::Scratch;
+
+mod scratch;
+
 /// Runs `program` under a virtual X server, killing it (and its X server) after `limit`.
 /// Output goes to files, so a chatty program never blocks on a full pipe.
 fn run_in_window(program: &Path, args: &[&str], limit: Duration) -> Output {
@@ -53,19 +57,15 @@ fn run_in_window(program: &Path, args: &[&str], limit: Duration) -> Output {
         }
         std::thread::sleep(Duration::from_millis(100));
     };
-    let output = Output {
+    Output {
         status,
         stdout: std::fs::read(&out_path).unwrap_or_default(),
         stderr: std::fs::read(&err_path).unwrap_or_default(),
-    };
-    let _ = std::fs::remove_dir_all(&logs);
-    output
+    }
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sphere_lab_window_{}_{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+fn temp_dir(name: &str) -> Scratch {
+    Scratch::new("sphere_lab_window", name)
 }
 
 /// The saved screenshot: the path the app printed.
@@ -146,13 +146,15 @@ fn unattended(program: &Path, extra: &[&str], at: &str, dir: &Path) -> Output {
 
 #[test]
 fn lab_and_examples_in_a_real_window() {
+    let shots = temp_dir("shots");
+    std::fs::create_dir_all(&shots).unwrap();
     // The lab opened on the tutorial's scene 2: blue, green and red spheres, the time on it.
     let lab = Path::new(env!("CARGO_BIN_EXE_sphere_lab"));
     let out = unattended(
         lab,
         &["--scene", "density_collisions"],
         "1",
-        &temp_dir("density"),
+        &shots.join("density"),
     );
     let image = screenshot(&out);
     assert_eq!(scene_shown(&out), "density_collisions");
@@ -175,7 +177,7 @@ fn lab_and_examples_in_a_real_window() {
         "{} is built by cargo test",
         cradle.display()
     );
-    let out = unattended(&cradle, &[], "1", &temp_dir("cradle"));
+    let out = unattended(&cradle, &[], "1", &shots.join("cradle"));
     let image = screenshot(&out);
     assert_eq!(scene_shown(&out), "newtons_cradle");
     assert!(read_time_stamp(&image).is_some_and(|t| t >= 1.0));
@@ -193,7 +195,7 @@ fn lab_and_examples_in_a_real_window() {
         ("lab", ""),
     ] {
         let program = example(name);
-        let out = unattended(&program, &[], "0.2", &temp_dir(name));
+        let out = unattended(&program, &[], "0.2", &shots.join(name));
         let image = screenshot(&out);
         assert_eq!(scene_shown(&out), scene, "{name}");
         assert!(read_time_stamp(&image).is_some(), "{name}");
@@ -209,7 +211,7 @@ fn lab_and_examples_in_a_real_window() {
         lab,
         &["--scene", "settling_ball"],
         "2.5",
-        &temp_dir("settling"),
+        &shots.join("settling"),
     );
     let image = screenshot(&out);
     assert_eq!(scene_shown(&out), "settling_ball");
@@ -217,7 +219,7 @@ fn lab_and_examples_in_a_real_window() {
     assert!(blue > 2000, "the resting ball: blue {blue}");
 
     // A folder that cannot be made: the failure is reported (exit code 1 with --exit).
-    let blocker = temp_dir("blocked");
+    let blocker = shots.join("blocked");
     std::fs::write(&blocker, b"a file").unwrap();
     let out = unattended(&cradle, &[], "0.5", &blocker.join("shots"));
     assert_eq!(out.status.code(), Some(1));

@@ -158,6 +158,8 @@ impl Plugin for SpherePhysicsPlugin {
             .register_type::<NoInterpolation>()
             .register_type::<SphereOrder>()
             .register_type::<SpherePhysicsClock>()
+            .register_type::<SpherePhysicsDiagnostics>()
+            .register_type::<SphereShownTime>()
             .configure_sets(
                 FixedUpdate,
                 (

@@ -86,10 +86,13 @@ impl SpherePhysicsClock {
     }
 }
 
-/// The core's statistics of the last step, and totals since start.
-#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+/// The core's statistics of the last step, and totals since start. Reflected (for inspectors)
+/// but for `last`, the core's own type.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Reflect)]
+#[reflect(Resource)]
 pub struct SpherePhysicsDiagnostics {
     /// The last step's statistics: collisions, energies, momentum, largest overlap.
+    #[reflect(ignore)]
     pub last: StepStats,
     /// Simulated seconds.
     pub time: f64,
@@ -112,7 +115,8 @@ pub struct SpherePhysicsDiagnostics {
 /// [`NoInterpolation`](crate::NoInterpolation) is drawn at the last step's time instead.)
 /// Its own resource, written after the fixed steps of every frame, so that
 /// [`SpherePhysicsDiagnostics`] changes only when the physics steps.
-#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Reflect)]
+#[reflect(Resource)]
 pub struct SphereShownTime(pub f64);
 
 /// A command that empties the simulation and restarts its clock: the core world is replaced by

@@ -1912,3 +1912,68 @@ fn a_sphere_given_back_an_old_handle_keeps_its_body() {
     assert_eq!(app.world().get::<SphereHandle>(a).unwrap().0, current);
     assert_eq!(velocity(&app, a).x, 1.0);
 }
+
+/// The plugin's components and resources are registered for reflection, as editors and
+/// inspectors read them, and a reflected resource reads as the resource itself. (Until the
+/// fifty-seventh session the diagnostics and the shown time were not reflected.)
+#[test]
+fn components_and_resources_are_registered_for_reflection() {
+    use bevy::ecs::reflect::{ReflectComponent, ReflectResource};
+    use bevy::reflect::ReflectRef;
+    use std::any::TypeId;
+
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.world_mut().spawn(SphereBody::new(0.5));
+    run_steps(&mut app, 3);
+    let world = app.world();
+    let registry = world.resource::<AppTypeRegistry>().read();
+    let components = [
+        ("SphereBody", TypeId::of::<SphereBody>()),
+        ("SpherePosition", TypeId::of::<SpherePosition>()),
+        (
+            "PreviousSpherePosition",
+            TypeId::of::<PreviousSpherePosition>(),
+        ),
+        ("SphereVelocity", TypeId::of::<SphereVelocity>()),
+        ("Density", TypeId::of::<Density>()),
+        ("Restitution", TypeId::of::<Restitution>()),
+        ("AppliedForce", TypeId::of::<AppliedForce>()),
+        ("FixedSphere", TypeId::of::<FixedSphere>()),
+        ("Tethered", TypeId::of::<Tethered>()),
+        ("SphereOrder", TypeId::of::<SphereOrder>()),
+        ("NoInterpolation", TypeId::of::<NoInterpolation>()),
+    ];
+    for (name, id) in components {
+        let registration = registry.get(id);
+        assert!(
+            registration.is_some_and(|r| r.data::<ReflectComponent>().is_some()),
+            "{name}"
+        );
+    }
+    let resources = [
+        ("SpherePhysicsClock", TypeId::of::<SpherePhysicsClock>()),
+        (
+            "SpherePhysicsDiagnostics",
+            TypeId::of::<SpherePhysicsDiagnostics>(),
+        ),
+        ("SphereShownTime", TypeId::of::<SphereShownTime>()),
+    ];
+    for (name, id) in resources {
+        let registration = registry.get(id);
+        assert!(
+            registration.is_some_and(|r| r.data::<ReflectResource>().is_some()),
+            "{name}"
+        );
+    }
+    // The diagnostics read through reflection as they are.
+    let id = TypeId::of::<SpherePhysicsDiagnostics>();
+    let component = world.components().get_valid_id(id).unwrap();
+    let entity = world.resource_entities().get(component).unwrap();
+    let reflected = world.get_reflect(entity, id).unwrap();
+    let ReflectRef::Struct(fields) = reflected.reflect_ref() else {
+        panic!("the diagnostics reflect as a struct");
+    };
+    let steps = fields.field("steps").unwrap().try_downcast_ref::<u64>();
+    assert_eq!(steps, Some(&3));
+    assert!(fields.field("last").is_none());
+}

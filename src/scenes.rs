@@ -331,6 +331,9 @@ pub fn spawn_spheres(commands: &mut Commands, spheres: &[SphereSpec]) {
         if s.fixed {
             entity.insert(FixedSphere);
         }
+        if s.never_sleeps {
+            entity.insert(NeverSleeps);
+        }
         if let Some(t) = &s.tether {
             entity.insert(Tethered {
                 anchor: t.anchor,

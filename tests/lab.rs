@@ -795,6 +795,69 @@ fn a_scene_files_view_is_kept_and_a_bad_one_listed() {
     );
 }
 
+/// The lab spawns a scene file's spheres as the file describes them, field by field: each
+/// scene of `assets/scenes`, and one whose pushed sphere never sleeps.
+#[test]
+fn the_lab_spawns_each_scene_files_spheres_as_the_file_describes_them() {
+    let dir = temp_dir("described");
+    std::fs::create_dir_all(&dir).unwrap();
+    let awake = dir.join("kept_awake.ron");
+    std::fs::write(
+        &awake,
+        "(name: \"Kept awake\", gravity: (0.0, -9.81, 0.0), restitution: 0.5, sleep: (),
+          spheres: [(position: (0.0, 0.5, 0.0), radius: 0.5, force: (0.1, 0.0, 0.0),
+                     never_sleeps: true),
+                    (position: (0.0, -100.0, 0.0), radius: 100.0, fixed: true)])",
+    )
+    .unwrap();
+    let mut app = lab(LabPlugin {
+        scene_folder: Some(scene_folder()),
+        ..default()
+    });
+    app.add_lab_scene_file(&awake);
+    app.update();
+    let mut files: Vec<PathBuf> = std::fs::read_dir(scene_folder())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    files.sort();
+    files.push(awake.clone());
+    for file in files {
+        let id = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let wanted = sphere_physics::SceneDesc::load(&file)
+            .unwrap()
+            .sphere_descs()
+            .unwrap();
+        app.world_mut().write_message(LabAction::Load(id.clone()));
+        app.update();
+        app.update();
+        let world = &app.world().resource::<SpherePhysicsWorld>().world;
+        assert!(world.time() > 0.0, "{id}");
+        assert_eq!(world.len(), wanted.len(), "{id}");
+        let fields = |d: &sphere_physics::SphereDesc| {
+            (
+                d.radius.to_bits(),
+                d.density.to_bits(),
+                d.restitution.to_bits(),
+                d.force.to_array().map(f64::to_bits),
+                d.fixed,
+                d.tether
+                    .map(|t| (t.anchor.to_array().map(f64::to_bits), t.length.to_bits())),
+                d.never_sleeps,
+            )
+        };
+        for (k, (body, want)) in world.bodies().iter().zip(&wanted).enumerate() {
+            assert_eq!(fields(body.desc()), fields(want), "{id}: sphere {k}");
+        }
+    }
+    assert!(
+        app.world().resource::<SpherePhysicsWorld>().world.bodies()[0]
+            .desc()
+            .never_sleeps
+    );
+}
+
 /// Regression (found by review): a scene built in code with settings the core refuses (no
 /// substeps, say) was listed, then stood still with a refused step every frame; and
 /// `LabScenes::failure` indexed `errors`, which a game may clear, so it could panic.

@@ -121,6 +121,15 @@ pub struct AppliedForce(pub DVec3);
 #[reflect(Component)]
 pub struct FixedSphere;
 
+/// Keeps a sphere, and every sphere touching it, from falling asleep when sleeping is on (see
+/// [`SpherePhysicsPlugin::sleep`](crate::SpherePhysicsPlugin::sleep)): for a sphere the game
+/// pushes with a small force or steers slowly, which would otherwise fall asleep where it is
+/// once it has been slower than the sleeping speed for the sleeping time. The core's
+/// `SphereDesc::never_sleeps`.
+#[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq)]
+#[reflect(Component)]
+pub struct NeverSleeps;
+
 /// Hangs a sphere on an inextensible string of `length` from `anchor` (pulls, never pushes).
 #[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
 #[reflect(Component)]

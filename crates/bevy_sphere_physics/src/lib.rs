@@ -24,7 +24,7 @@
 //!   is put back, as is a removed [`PreviousSpherePosition`]).
 //! - **Change a component** ([`SphereVelocity`], [`SphereBody::radius`], [`Density`],
 //!   [`Restitution`], [`AppliedForce`], [`SpherePosition`] to teleport, [`FixedSphere`],
-//!   [`Tethered`]): applied at the next fixed step's `Prepare`. Writing `Transform` does
+//!   [`Tethered`], [`NeverSleeps`]): applied at the next fixed step's `Prepare`. Writing `Transform` does
 //!   nothing: it is the plugin's output. A velocity or position set by a system that ran
 //!   after `Prepare` in the same fixed step (a system in `FixedUpdate` with no order against
 //!   the plugin's sets may) is kept, not overwritten with the step's result, and applied at

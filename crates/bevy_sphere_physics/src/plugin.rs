@@ -154,6 +154,7 @@ impl Plugin for SpherePhysicsPlugin {
             .register_type::<Restitution>()
             .register_type::<AppliedForce>()
             .register_type::<FixedSphere>()
+            .register_type::<NeverSleeps>()
             .register_type::<Tethered>()
             .register_type::<NoInterpolation>()
             .register_type::<SphereOrder>()

@@ -70,6 +70,7 @@ pub(crate) fn record_part_removal(
             AppliedForce,
             FixedSphere,
             Tethered,
+            NeverSleeps,
             Disabled,
         ),
     >,
@@ -95,6 +96,7 @@ type ChangedSphere = (
         Changed<AppliedForce>,
         Changed<FixedSphere>,
         Changed<Tethered>,
+        Changed<NeverSleeps>,
     )>,
 );
 
@@ -132,6 +134,7 @@ type SphereQuery<'a> = (
     Option<&'a Name>,
     Option<Ref<'a, SphereHandle>>,
     Has<PreviousSpherePosition>,
+    Has<NeverSleeps>,
 );
 
 /// The description `item`'s components give. A body's state (its position and velocity) whose
@@ -153,6 +156,7 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions, current: Option<&Bo
         name,
         _,
         _,
+        never_sleeps,
     ) = item;
     let tether = tether.map(|t| Tether {
         anchor: t.anchor,
@@ -177,6 +181,7 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions, current: Option<&Bo
         force: force.map_or(DVec3::ZERO, |f| f.0),
         fixed: *fixed,
         tether,
+        never_sleeps: *never_sleeps,
     }
 }
 
@@ -202,21 +207,23 @@ type SphereQueryItem<'a> = <SphereQuery<'a> as bevy::ecs::query::QueryData>::Ite
 /// Whether the body still matches its components (exactly: the plugin writes the core's own
 /// values back, so any difference is a change made by the game).
 fn matches(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
-    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _, _) = item;
+    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _, _, _) = item;
     position.is_none_or(|p| p.0 == body.position())
         && velocity.is_none_or(|v| v.0 == body.velocity())
         && force.map_or(DVec3::ZERO, |f| f.0) == body.force()
         && same_shape(body, item, options)
 }
 
-/// Whether the body's radius, density, restitution, fixedness and string still match its
-/// components: if so, only its position, velocity or force can have changed.
+/// Whether the body's radius, density, restitution, fixedness, string and `never_sleeps` still
+/// match its components: if so, only its position, velocity or force can have changed.
 fn same_shape(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> bool {
-    let (_, sphere, _, _, _, density, restitution, _, fixed, tether, _, _, _, _) = item;
+    let (_, sphere, _, _, _, density, restitution, _, fixed, tether, _, _, _, _, never_sleeps) =
+        item;
     sphere.radius == body.radius()
         && density.copied().unwrap_or_default().0 == body.density()
         && restitution.map_or(options.restitution, |r| r.0) == body.restitution()
         && *fixed == body.is_fixed()
+        && *never_sleeps == body.desc().never_sleeps
         && tether.map(|t| (t.anchor, t.length)) == body.desc().tether.map(|t| (t.anchor, t.length))
 }
 
@@ -224,7 +231,7 @@ fn same_shape(body: &Body, item: &SphereQueryItem, options: &PluginOptions) -> b
 /// the core one by one, with no new description (and no name formatted for it). `false` if
 /// one is refused: the caller then rebuilds the whole description, which reports it.
 fn steer(world: &mut sphere_physics::World, id: BodyId, item: &SphereQueryItem) -> bool {
-    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _, _) = item;
+    let (_, _, _, position, velocity, _, _, force, _, _, _, _, _, _, _) = item;
     let Some(body) = world.body(id) else {
         return false;
     };
@@ -252,6 +259,7 @@ fn same_desc(a: &SphereDesc, b: &SphereDesc) -> bool {
         force,
         fixed,
         tether,
+        never_sleeps,
     } = a;
     *name == b.name
         && same3(*position, b.position)
@@ -261,6 +269,7 @@ fn same_desc(a: &SphereDesc, b: &SphereDesc) -> bool {
         && same(*restitution, b.restitution)
         && same3(*force, b.force)
         && *fixed == b.fixed
+        && *never_sleeps == b.never_sleeps
         && match (tether, b.tether) {
             (None, None) => true,
             (Some(x), Some(y)) => same3(x.anchor, y.anchor) && same(x.length, y.length),

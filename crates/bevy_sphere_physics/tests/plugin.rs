@@ -1404,6 +1404,23 @@ fn a_sphere_at_rest_falls_asleep_and_a_game_wakes_it() {
     assert!((moved.x - dt).abs() < 1e-6, "{moved}");
 }
 
+/// `NeverSleeps` keeps a sphere at rest awake; taken off, the sphere falls asleep; put on a
+/// sphere asleep, it wakes it.
+#[test]
+fn a_sphere_that_never_sleeps_stays_awake_until_the_game_lets_it() {
+    let mut app = app(sleeping_under_gravity());
+    let (_, ball) = ball_on_a_floor(&mut app);
+    app.world_mut().entity_mut(ball).insert(NeverSleeps);
+    run_steps(&mut app, 150);
+    assert_eq!(asleep(&app), 0);
+    app.world_mut().entity_mut(ball).remove::<NeverSleeps>();
+    run_steps(&mut app, 90);
+    assert_eq!(asleep(&app), 1);
+    app.world_mut().entity_mut(ball).insert(NeverSleeps);
+    run_steps(&mut app, 90);
+    assert_eq!(asleep(&app), 0);
+}
+
 /// Spheres whose components changed since the last step (counted after `Writeback`).
 #[derive(Resource, Default)]
 struct ChangedPositions(usize);
@@ -1939,6 +1956,7 @@ fn components_and_resources_are_registered_for_reflection() {
         ("Restitution", TypeId::of::<Restitution>()),
         ("AppliedForce", TypeId::of::<AppliedForce>()),
         ("FixedSphere", TypeId::of::<FixedSphere>()),
+        ("NeverSleeps", TypeId::of::<NeverSleeps>()),
         ("Tethered", TypeId::of::<Tethered>()),
         ("SphereOrder", TypeId::of::<SphereOrder>()),
         ("NoInterpolation", TypeId::of::<NoInterpolation>()),

@@ -231,6 +231,7 @@ pub fn table(n: u32, seed: u64) -> SceneDesc {
         force: [0.0; 3],
         fixed: true,
         tether: None,
+        never_sleeps: false,
     };
     let mut spheres = vec![
         fixed("floor", [0.0, -wall, 0.0]),
@@ -259,6 +260,7 @@ pub fn table(n: u32, seed: u64) -> SceneDesc {
             force: [0.0; 3],
             fixed: false,
             tether: None,
+            never_sleeps: false,
         });
     }
     SceneDesc {
@@ -293,6 +295,7 @@ pub fn add_bouncer(scene: &mut SceneDesc) {
         force: [0.0; 3],
         fixed,
         tether: None,
+        never_sleeps: false,
     };
     scene
         .spheres

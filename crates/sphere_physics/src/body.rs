@@ -69,6 +69,12 @@ pub struct SphereDesc {
     pub fixed: bool,
     /// An inextensible string to a fixed anchor (pulls, never pushes). Ignored on fixed bodies.
     pub tether: Option<Tether>,
+    /// Never falls asleep, nor lets the group of bodies it touches fall asleep (see
+    /// [`Settings::sleep`](crate::Settings::sleep)). For a sphere a game pushes with a small
+    /// force, or steers slowly: with sleeping on, one moving slower than the sleeping speed for
+    /// the sleeping time falls asleep where it is, though its force may not be balanced.
+    /// Default false.
+    pub never_sleeps: bool,
 }
 
 /// An inextensible, massless string from a fixed anchor point to a sphere's centre: the sphere
@@ -104,6 +110,7 @@ impl SphereDesc {
             force: DVec3::ZERO,
             fixed: false,
             tether: None,
+            never_sleeps: false,
         }
     }
 
@@ -152,6 +159,13 @@ impl SphereDesc {
     /// Makes the body fixed (infinite mass).
     pub fn fixed(mut self) -> Self {
         self.fixed = true;
+        self
+    }
+
+    /// Keeps the body, and the group of bodies it touches, from falling asleep (see
+    /// [`SphereDesc::never_sleeps`]).
+    pub fn never_sleeping(mut self) -> Self {
+        self.never_sleeps = true;
         self
     }
 

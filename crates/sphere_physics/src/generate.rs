@@ -403,6 +403,7 @@ impl Generator {
                         force: [0.0; 3],
                         fixed: false,
                         tether: None,
+                        never_sleeps: false,
                     })
                     .collect())
             }
@@ -440,6 +441,7 @@ impl Generator {
                             force: [0.0; 3],
                             fixed: false,
                             tether: None,
+                            never_sleeps: false,
                         }
                     })
                     .collect();
@@ -498,6 +500,7 @@ impl Generator {
                                 force: [0.0; 3],
                                 fixed: true,
                                 tether: None,
+                                never_sleeps: false,
                             });
                         }
                     }

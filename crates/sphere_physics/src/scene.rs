@@ -107,6 +107,10 @@ pub struct SphereSpec {
     /// A string to a fixed anchor: `tether: (anchor: (x, y, z), length: L)` (default none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tether: Option<Tether>,
+    /// Never falls asleep, nor lets the spheres it touches fall asleep (default false; see
+    /// [`SphereDesc::never_sleeps`]).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub never_sleeps: bool,
 }
 
 /// What can go wrong loading or building a scene.
@@ -327,6 +331,7 @@ impl SceneDesc {
                 force: s.force.into(),
                 fixed: s.fixed,
                 tether: s.tether,
+                never_sleeps: s.never_sleeps,
             })
             .collect())
     }

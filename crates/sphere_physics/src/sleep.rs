@@ -257,6 +257,7 @@ impl Sleeper {
                     self.wake.push(state.island);
                 }
             } else if body.tether().is_none()
+                && !body.desc.never_sleeps
                 && body.desc.velocity.length() < sleep.speed
                 // Resting needs something to rest against: with no acceleration a body at
                 // rest costs next to nothing, and one being moved out of an overlap (without

@@ -632,3 +632,87 @@ fn removing_a_sphere_leaves_every_group_asleep_with_its_own() {
         "the last pair still asleep"
     );
 }
+
+/// A sphere that never sleeps (`SphereDesc::never_sleeps`), pushed gently across the floor,
+/// slides on as the force says, where one without it falls asleep where it is (the known
+/// fault in the README); and a resting ball touching a never-sleeping one stays awake with it,
+/// while one alone falls asleep.
+#[test]
+fn a_sphere_that_never_sleeps_slides_on_under_a_small_force_and_keeps_its_group_awake() {
+    // A floor so wide that it is flat within a part in 1e7 over the 40 m used here.
+    let mut world = World::new(Settings {
+        sleep: Some(Sleep::default()),
+        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
+    });
+    world
+        .add_sphere(SphereDesc::new(1e8).at(DVec3::NEG_Y * 1e8).fixed())
+        .unwrap();
+    let push = 0.095;
+    let pushed = |world: &mut World, x: f64, never: bool| {
+        let mut desc = SphereDesc::new(0.5)
+            .at(DVec3::new(x, 0.5, 0.0))
+            .with_restitution(0.5);
+        // Density 1: the mass is the volume.
+        desc.force = DVec3::X * push * (4.0 / 3.0 * std::f64::consts::PI * 0.125);
+        if never {
+            desc = desc.never_sleeping();
+        }
+        world.add_sphere(desc).unwrap()
+    };
+    let sleeper = pushed(&mut world, -20.0, false);
+    let slider = pushed(&mut world, 20.0, true);
+    let keeper = world
+        .add_sphere(
+            SphereDesc::new(0.5)
+                .at(DVec3::new(0.0, 0.5, 0.0))
+                .with_restitution(0.5)
+                .never_sleeping(),
+        )
+        .unwrap();
+    let beside = ball_at(&mut world, 1.0, 0.5);
+    let alone = ball_at(&mut world, -10.0, 0.5);
+    let steps = 180;
+    for _ in 0..steps {
+        world.step(DT).unwrap();
+    }
+    let t = steps as f64 * DT;
+    assert!(asleep(&world, sleeper), "the known fault, for contrast");
+    assert!(asleep(&world, alone));
+    assert!(!asleep(&world, slider) && !asleep(&world, keeper));
+    assert!(!asleep(&world, beside), "touching one that never sleeps");
+    let body = world.body(slider).unwrap();
+    let speed = body.velocity().x;
+    assert!((speed - push * t).abs() < 1e-4 * push * t, "{speed}");
+    // Semi-implicit Euler: each step drifts at the speed after its kick.
+    let travelled = body.position().x - 20.0;
+    let expected = 0.5 * push * DT * DT * (steps * (steps + 1)) as f64;
+    assert!(
+        (travelled - expected).abs() < 1e-4 * expected,
+        "{travelled}"
+    );
+    // A description given again without it lets the slider sleep once it is calm.
+    let desc = SphereDesc {
+        never_sleeps: false,
+        force: DVec3::ZERO,
+        velocity: DVec3::ZERO,
+        ..body.desc().clone()
+    };
+    world.set_desc(slider, desc).unwrap();
+    step_until_asleep(&mut world, slider, 180);
+}
+
+/// `never_sleeps` in a scene file reaches the sphere's description; left out, it is false.
+#[test]
+fn a_scene_file_names_the_spheres_that_never_sleep() {
+    let scene = SceneDesc::from_ron(
+        "(name: \"pushed\", sleep: (),
+          spheres: [(position: (0.0, 0.5, 0.0), radius: 0.5, force: (0.1, 0.0, 0.0),
+                     never_sleeps: true),
+                    (position: (3.0, 0.5, 0.0), radius: 0.5)])",
+    )
+    .unwrap();
+    let descs = scene.sphere_descs().unwrap();
+    assert!(descs[0].never_sleeps && !descs[1].never_sleeps);
+    let world = scene.build().unwrap();
+    assert!(world.bodies()[0].desc().never_sleeps);
+}

@@ -255,6 +255,23 @@ impl SphereDesc {
                 )
             });
         }
+        // The acceleration the force gives (a finite force on a light sphere may overflow it:
+        // every step was then refused, blaming the velocity).
+        if !self.fixed {
+            let inverse_mass = 1.0 / mass_of(self.density, self.radius);
+            if let Some(bad) = self
+                .force
+                .to_array()
+                .into_iter()
+                .find(|f| !(f * inverse_mass).is_finite())
+            {
+                return Err(err(
+                    Field::Force,
+                    bad,
+                    "over the sphere's mass must be a finite acceleration",
+                ));
+            }
+        }
         Ok(())
     }
 }

@@ -45,7 +45,16 @@ fn at_start(d: DVec3, w: DVec3, contact: f64, tol: Tolerance) -> Option<ToiOutco
     if !touching_or_overlapping(distance, contact, tol) {
         return None;
     }
-    let hit = distance > 0.0 && approaching(d.dot(w) / distance, tol);
+    // The normal speed. Where speed times distance overflows (past about 1e154), it is taken
+    // along the unit normal instead: an overflow to infinity read as not approaching, and a
+    // touching pair closing that fast passed through.
+    let along = d.dot(w);
+    let normal_speed = if along.is_finite() {
+        along / distance
+    } else {
+        (d / distance).dot(w)
+    };
+    let hit = distance > 0.0 && approaching(normal_speed, tol);
     Some(ToiOutcome {
         time: hit.then_some(0.0),
         iterations: 0,

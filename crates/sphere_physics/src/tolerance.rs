@@ -30,9 +30,15 @@ impl Tolerance {
         self.epsilon
     }
 
-    /// Whether `a` and `b` are equal within this tolerance.
+    /// Whether `a` and `b` are equal within this tolerance. An infinity equals only itself: it
+    /// is not within any tolerance of a finite number (before the fifty-seventh session it was,
+    /// as the tolerance scales with the larger: a distance that overflowed counted as touching,
+    /// and a normal speed that overflowed as not approaching).
     pub fn eq(self, a: f64, b: f64) -> bool {
-        (a - b).abs() <= self.epsilon * (1.0 + a.abs().max(b.abs()))
+        let difference = (a - b).abs();
+        a == b
+            || (difference < f64::INFINITY
+                && difference <= self.epsilon * (1.0 + a.abs().max(b.abs())))
     }
 
     /// Whether `x` is zero within this tolerance.

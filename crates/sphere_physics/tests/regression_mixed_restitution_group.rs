@@ -80,3 +80,35 @@ fn a_moving_fixed_body_is_judged_in_its_own_frame() {
     let relative: Vec<DVec3> = velocities.iter().map(|v| *v - DVec3::X).collect();
     assert!(energy(&inverse, &relative) <= 1.0 + 1e-12);
 }
+
+/// Regression (found by review in the fifty-seventh session): the same strike by spheres of
+/// 1e200 kg at 1e60 m/s (within the documented limits: the impulses stay finite), whose
+/// kinetic energy overflows an f64, skipped the check and kept 11/9 of its energy. The answer
+/// is the one above, scaled.
+#[test]
+fn regression_the_strike_of_a_huge_energy_is_scaled_too() {
+    let speed = 1e60;
+    let inverse = [1e-200; 3];
+    let contacts = [
+        GroupContact::new(0, 1, DVec3::X, 1.0),
+        GroupContact::new(1, 2, DVec3::X, 0.0),
+    ];
+    let mut velocities = [DVec3::X * speed, DVec3::ZERO, DVec3::ZERO];
+    let mut impulses = Vec::new();
+    resolve_simultaneous(&inverse, &mut velocities, &contacts, &mut impulses);
+    let s = 3f64.sqrt() / 2.0;
+    let expected = [
+        1.0 / 3.0 - s * 2.0 / 3.0,
+        1.0 / 3.0 + s * 2.0 / 3.0,
+        1.0 / 3.0,
+    ];
+    for (v, x) in velocities.iter().zip(expected) {
+        assert!(
+            (*v / speed - DVec3::X * x).length() <= 1e-12,
+            "{velocities:?}"
+        );
+    }
+    // Its energy, in units of the striker's: no more than it brought.
+    let scaled: Vec<DVec3> = velocities.iter().map(|v| *v / speed).collect();
+    assert!(energy(&[1.0; 3], &scaled) <= 0.5 * (1.0 + 1e-12));
+}

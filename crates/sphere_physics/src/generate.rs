@@ -214,14 +214,20 @@ impl Checked {
         if value.is_finite() && value > 0.0 {
             Ok(())
         } else {
-            Err(self.err(field, format!("must be finite and > 0, got {value}")))
+            Err(self.err(
+                field,
+                format!("must be finite and > 0, got {}", crate::Readable(value)),
+            ))
         }
     }
 
     fn finite(&self, field: &'static str, value: &[f64]) -> Result<(), GenerateError> {
         match value.iter().find(|v| !v.is_finite()) {
             None => Ok(()),
-            Some(v) => Err(self.err(field, format!("must be finite, got {v}"))),
+            Some(v) => Err(self.err(
+                field,
+                format!("must be finite, got {}", crate::Readable(*v)),
+            )),
         }
     }
 
@@ -237,9 +243,12 @@ impl Checked {
         if let Some(restitution) = restitution {
             probe = probe.with_restitution(restitution);
         }
-        probe
-            .validate(String::new)
-            .map_err(|e| self.err(e.field.name(), format!("{}, got {}", e.reason, e.value)))
+        probe.validate(String::new).map_err(|e| {
+            self.err(
+                e.field.name(),
+                format!("{}, got {}", e.reason, crate::Readable(e.value)),
+            )
+        })
     }
 
     fn lattice(
@@ -263,7 +272,8 @@ impl Checked {
                 "max",
                 format!(
                     "must exceed min in every axis (axis {k}: {} <= {})",
-                    max[k], min[k]
+                    crate::Readable(max[k]),
+                    crate::Readable(min[k])
                 ),
             ));
         }
@@ -293,7 +303,8 @@ impl Checked {
             return Err(self.err(
                 "count",
                 format!(
-                    "{count} spheres of radius {radius} do not fit in the box (at most {})",
+                    "{count} spheres of radius {} do not fit in the box (at most {})",
+                    crate::Readable(radius),
                     lattice.capacity()
                 ),
             ));
@@ -422,7 +433,10 @@ impl Generator {
                 let lattice = check.lattice(count, min, max, radius)?;
                 check.material(radius, density, restitution)?;
                 if !(speed.is_finite() && speed >= 0.0) {
-                    return Err(check.err("speed", format!("must be finite and >= 0, got {speed}")));
+                    return Err(check.err(
+                        "speed",
+                        format!("must be finite and >= 0, got {}", crate::Readable(speed)),
+                    ));
                 }
                 let mut rng = SplitMix64(seed);
                 let picked = cells(count, lattice.capacity(), &mut rng);

@@ -177,13 +177,23 @@ impl SceneDesc {
             })
     }
 
-    /// Reads and parses a scene file.
+    /// Reads and parses a scene file. Only a regular file (or a link to one) is read: a device
+    /// or a pipe (`/dev/zero`, say, which would be read until memory ran out, or a pipe no one
+    /// writes to, read for ever) is refused as one.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SceneError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+        let io = |source| SceneError::Io {
             path: path.to_owned(),
             source,
-        })?;
+        };
+        // Asked of the path before it is opened: opening a pipe waits for a writer.
+        if !std::fs::metadata(path).map_err(io)?.is_file() {
+            return Err(io(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "not a regular file",
+            )));
+        }
+        let bytes = std::fs::read(path).map_err(io)?;
         // Text that is not UTF-8 is placed too: the line and column of its first bad byte.
         let text = std::str::from_utf8(&bytes).map_err(|error| {
             let good = &bytes[..error.valid_up_to()];

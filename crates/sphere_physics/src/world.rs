@@ -159,22 +159,23 @@ impl Settings {
             })
         };
         if !self.gravity.is_finite() {
-            return bad("gravity", format!("{}", self.gravity), "must be finite");
+            let [x, y, z] = self.gravity.to_array().map(crate::Readable);
+            return bad("gravity", format!("[{x}, {y}, {z}]"), "must be finite");
         }
         let eps = self.tolerance.epsilon();
         if !(eps.is_finite() && (0.0..0.5).contains(&eps)) {
             return bad(
                 "tolerance",
-                format!("{eps}"),
+                format!("{}", crate::Readable(eps)),
                 "must be finite and in [0, 0.5)",
             );
         }
         if !(self.resting_factor.is_finite() && self.resting_factor >= 0.0) {
-            let value = format!("{}", self.resting_factor);
+            let value = format!("{}", crate::Readable(self.resting_factor));
             return bad("resting_factor", value, "must be finite and >= 0");
         }
         if !(0.0..=1.0).contains(&self.creep_fraction) {
-            let value = format!("{}", self.creep_fraction);
+            let value = format!("{}", crate::Readable(self.creep_fraction));
             return bad("creep_fraction", value, "must be in [0, 1]");
         }
         if self.substeps == 0 {
@@ -193,11 +194,11 @@ impl Settings {
         }
         if let Some(sleep) = self.sleep {
             if !(sleep.speed.is_finite() && sleep.speed >= 0.0) {
-                let value = format!("{}", sleep.speed);
+                let value = format!("{}", crate::Readable(sleep.speed));
                 return bad("sleep.speed", value, "must be finite and >= 0");
             }
             if !(sleep.time.is_finite() && sleep.time >= 0.0) {
-                let value = format!("{}", sleep.time);
+                let value = format!("{}", crate::Readable(sleep.time));
                 return bad("sleep.time", value, "must be finite and >= 0");
             }
         }

@@ -75,7 +75,9 @@ fn regression_a_refused_step_keeps_the_last_steps_records_and_stats() {
     // Now a force no long step can take: in 100 s the first sphere would reach an infinite
     // speed (its acceleration, 3.4e307 m/s², is finite: a force whose acceleration is not is
     // refused where it is given).
-    world.set_force(a, DVec3::new(f64::MAX / 10.0, 0.0, 0.0)).unwrap();
+    world
+        .set_force(a, DVec3::new(f64::MAX / 10.0, 0.0, 0.0))
+        .unwrap();
     assert!(matches!(world.step(100.0), Err(WorldError::Body(_))));
     assert_eq!(*world.stats(), stats);
     assert_eq!(world.collisions(), &collisions[..]);

@@ -3,6 +3,7 @@
 //! Exit codes: 0 success; 2 bad input (usage, scene file, invalid sphere), with one line on
 //! standard error and no JSON written; 1 when writing the output fails.
 
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -68,14 +69,11 @@ fn main() -> ExitCode {
     let result = args
         .and_then(|args| cli::parse(&args).map_err(bad_input))
         .and_then(|command| match command {
-            Command::Help => {
-                println!("{}", cli::USAGE);
-                Ok(())
-            }
-            Command::Version => {
-                println!("sphere-sim {}", env!("CARGO_PKG_VERSION"));
-                Ok(())
-            }
+            Command::Help => print(&format!("{}\n", cli::USAGE), "the help"),
+            Command::Version => print(
+                &format!("sphere-sim {}\n", env!("CARGO_PKG_VERSION")),
+                "the version",
+            ),
             Command::Run(run) => run_command(&run),
         });
     match result {
@@ -93,9 +91,22 @@ fn main() -> ExitCode {
                     c => c.to_string(),
                 })
                 .collect();
-            eprintln!("sphere-sim: error: {line}");
+            // Not `eprintln!`, which panics when standard error is closed.
+            use std::io::Write;
+            let _ = writeln!(std::io::stderr(), "sphere-sim: error: {line}");
             ExitCode::from(failure.code)
         }
+    }
+}
+
+/// Writes `text` (`what` it is) to standard output: a reader that stopped early (`| head`,
+/// `| true`) is not an error, and no panic (`println!` panics on a closed pipe).
+fn print(text: &str, what: &str) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other.map_err(|e| io_failure(format!("writing {what}: {e}"))),
     }
 }
 
@@ -160,15 +171,26 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
     let mut progress = Progress::new(args.progress);
     let mut observer = |stats: &sphere_physics::StepStats, world: &sphere_physics::World, total| {
         if let Some(writer) = trace.as_mut()
-            && trace_error.is_none()
             && let Err(e) = writer.write(&TraceRow::new(world.steps(), stats))
         {
+            // The run stops here: its trace is what was asked for.
             trace_error = Some(e);
+            return ControlFlow::Break(());
         }
         progress.update(world.steps(), total, world.time());
+        ControlFlow::Continue(())
     };
     let report = match play_prepared(prepared, &mut observer) {
         Ok(report) => report,
+        Err(PlayError::Stopped { step }) => {
+            progress.finish();
+            let e = trace_error.expect("only a failed trace stops the run");
+            let path = args.trace.as_ref().map_or(Path::new(""), |(p, _)| p);
+            return Err(io_failure(format!(
+                "writing the trace {}: {e} (the run was stopped at step {step}; no report)",
+                path.display()
+            )));
+        }
         Err(e) => {
             progress.finish();
             // Keep what was traced up to the failure (it shows how the run got there), and
@@ -190,27 +212,19 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         }
     };
     progress.finish();
-    if let Some(e) = trace_error {
-        return Err(io_failure(format!("writing the trace: {e}")));
-    }
-    if let Some(writer) = trace {
-        writer
-            .finish()
-            .map_err(|e| io_failure(format!("writing the trace: {e}")))?;
+    if let (Some(writer), Some((path, _))) = (trace, &args.trace) {
+        writer.finish().map_err(|e| {
+            io_failure(format!(
+                "writing the trace {}: {e} (at its end; no report)",
+                path.display()
+            ))
+        })?;
     }
     let mut json = serde_json::to_string_pretty(&report)
         .map_err(|e| io_failure(format!("encoding the report: {e}")))?;
     json.push('\n');
     match &args.output {
-        Output::Stdout => {
-            use std::io::Write;
-            let mut out = std::io::stdout().lock();
-            match out.write_all(json.as_bytes()).and_then(|()| out.flush()) {
-                // A reader that stopped early (`| head`) is not an error.
-                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-                other => other.map_err(|e| io_failure(format!("writing the report: {e}"))),
-            }
-        }
+        Output::Stdout => print(&json, "the report"),
         Output::File(path) => {
             std::fs::write(path, json).map_err(|e| io_failure(format!("{}: {e}", path.display())))
         }

@@ -1,5 +1,6 @@
 //! Playing a scene: step the world for a duration and report where everything ended.
 
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -43,6 +44,12 @@ pub enum PlayError {
         time: f64,
         /// Why it was refused.
         error: WorldError,
+    },
+    /// The observer stopped the run after this step (see [`Observer::step_done`]).
+    #[error("stopped after step {step}")]
+    Stopped {
+        /// The last step taken, counting from 1.
+        step: u64,
     },
     /// The duration needs too many steps.
     #[error(
@@ -141,16 +148,19 @@ pub struct Snapshot {
     pub total_energy: f64,
     /// Momentum of the dynamic bodies.
     pub momentum: [f64; 3],
+    /// Largest overlap between two spheres.
+    pub max_overlap: f64,
 }
 
 impl Snapshot {
-    fn of(world: &World) -> Self {
+    fn of(world: &mut World) -> Self {
         let (kinetic_energy, potential_energy) = (world.kinetic_energy(), world.potential_energy());
         Self {
             kinetic_energy,
             potential_energy,
             total_energy: kinetic_energy + potential_energy,
             momentum: world.momentum().to_array(),
+            max_overlap: world.max_overlap(),
         }
     }
 }
@@ -223,12 +233,23 @@ pub struct Report {
 
 /// Called after every step with the step's statistics, the world, and the step count planned.
 pub trait Observer {
-    /// One step is done.
-    fn step_done(&mut self, stats: &StepStats, world: &World, planned_steps: u64);
+    /// One step is done: `Break` stops the run there (its trace could not be written, say),
+    /// and the run ends with [`PlayError::Stopped`].
+    fn step_done(
+        &mut self,
+        stats: &StepStats,
+        world: &World,
+        planned_steps: u64,
+    ) -> ControlFlow<()>;
 }
 
-impl<F: FnMut(&StepStats, &World, u64)> Observer for F {
-    fn step_done(&mut self, stats: &StepStats, world: &World, planned_steps: u64) {
+impl<F: FnMut(&StepStats, &World, u64) -> ControlFlow<()>> Observer for F {
+    fn step_done(
+        &mut self,
+        stats: &StepStats,
+        world: &World,
+        planned_steps: u64,
+    ) -> ControlFlow<()> {
         self(stats, world, planned_steps)
     }
 }
@@ -317,11 +338,12 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
         duration,
         plan,
     } = prepared;
-    let initial = Snapshot::of(&world);
+    let initial = Snapshot::of(&mut world);
     let planned = plan.total();
     let mut totals = (0u64, 0u64, 0u64, 0u64, 0u64);
     let (mut fell_back, mut separated) = (0u64, 0u64);
-    let mut max_overlap_seen = world.max_overlap();
+    // At the ends of steps; the start's is in `initial`.
+    let mut max_overlap_seen = 0.0f64;
 
     let mut stepping = std::time::Duration::ZERO;
     for index in 0..planned {
@@ -342,12 +364,14 @@ pub fn play_prepared(prepared: Prepared, observer: &mut dyn Observer) -> Result<
         totals.3 += stats.toi_tests;
         totals.4 += stats.toi_iterations;
         max_overlap_seen = max_overlap_seen.max(stats.max_overlap);
-        observer.step_done(&stats, &world, planned);
+        if observer.step_done(&stats, &world, planned).is_break() {
+            return Err(PlayError::Stopped { step: index + 1 });
+        }
     }
     let wall_seconds = stepping.as_secs_f64();
 
-    let end = Snapshot::of(&world);
-    let max_overlap = world.max_overlap();
+    let end = Snapshot::of(&mut world);
+    let max_overlap = end.max_overlap;
     let bodies = world
         .bodies()
         .iter()

@@ -171,6 +171,11 @@ fn overlapping_spheres_with_no_gravity_part_without_speed() {
     assert_eq!(stats["separated"], 16);
     assert!(stats["max_overlap"].as_f64().unwrap().abs() < 1e-12);
     assert_eq!(stats["kinetic_energy"], 0.0);
+    // The overlap at the start is the initial one; `max_overlap_seen` is at the ends of steps
+    // (it counted the start's until the fifty-seventh session, against its documentation).
+    assert_eq!(r["initial"]["max_overlap"], 1.0);
+    let seen = stats["max_overlap_seen"].as_f64().unwrap();
+    assert!(seen > 0.5 && seen < 1.0, "{seen}");
 }
 
 #[test]
@@ -249,7 +254,18 @@ fn every_scene_file_runs() {
             names.push(r["scene"].as_str().unwrap().to_owned());
         }
     }
-    assert!(names.len() >= 8, "scenes: {names:?}");
+    let files = std::fs::read_dir(assets())
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "ron")
+        })
+        .count();
+    assert!(files >= 12, "{files}");
+    assert_eq!(names.len(), files, "scenes: {names:?}");
 }
 
 #[test]
@@ -443,6 +459,90 @@ fn help_and_version() {
     );
     let out = sim(&["--version"]);
     assert!(out.status.success());
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap(),
+        format!("sphere-sim {}\n", env!("CARGO_PKG_VERSION"))
+    );
+}
+
+/// Review of the fifty-seventh session: the help, the version and the error line were
+/// written with `println!` and `eprintln!`, which panic (exit code 101) when the pipe is
+/// closed; now a reader gone is no error, as for the report.
+#[test]
+fn regression_a_closed_pipe_is_no_panic() {
+    for args in [
+        &["--help"][..],
+        &["--version"],
+        &["run", "missing.ron", "--duration", "1"],
+    ] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let (err_reader, err_writer) = std::io::pipe().unwrap();
+        drop(err_reader);
+        let status = Command::new(env!("CARGO_BIN_EXE_sphere-sim"))
+            .args(args)
+            .stdout(writer)
+            .stderr(err_writer)
+            .status()
+            .unwrap();
+        let expected = if args[0] == "run" { 2 } else { 0 };
+        assert_eq!(status.code(), Some(expected), "{args:?}");
+    }
+}
+
+/// Review of the fifty-seventh session: a scene path that is not a regular file was read to
+/// its end: `/dev/zero` until memory ran out, a pipe for ever. It is bad input now.
+#[test]
+fn regression_a_scene_that_is_not_a_regular_file_is_bad_input() {
+    if Path::new("/dev/zero").exists() {
+        assert_bad_input(
+            &["run", "/dev/zero", "--duration", "1"],
+            &["/dev/zero", "not a regular file"],
+        );
+    }
+    let folder = scratch("a_folder.ron");
+    std::fs::create_dir_all(&folder).unwrap();
+    assert_bad_input(
+        &["run", folder.to_str().unwrap(), "--duration", "1"],
+        &["a_folder.ron", "not a regular file"],
+    );
+}
+
+/// Review of the fifty-seventh session: a trace that failed part-way (a full disk) was not
+/// written to again, but the run went on to its end, however long, and then wrote no report.
+/// Now the run stops at the failing step, and the message says so.
+#[test]
+fn regression_a_trace_that_fails_stops_the_run() {
+    if !Path::new("/dev/full").exists() {
+        return;
+    }
+    let full = scratch("full.csv");
+    let _ = std::fs::remove_file(&full);
+    std::os::unix::fs::symlink("/dev/full", &full).unwrap();
+    // 6000 steps: rows of about 150 bytes fill the trace's 8 KiB buffer within a hundred.
+    let scene = assets().join("two_spheres.ron");
+    let out = sim(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--duration",
+        "100",
+        "--trace",
+        full.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty(), "no report");
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("writing the trace") && err.contains("full.csv"),
+        "{err}"
+    );
+    let step: u64 = err
+        .split("stopped at step ")
+        .nth(1)
+        .and_then(|rest| rest.split(';').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!((1..200).contains(&step), "{err}");
 }
 
 #[test]

@@ -62,12 +62,26 @@ impl Default for LabPlugin {
     }
 }
 
-/// `assets/scenes` under the package (found through `CARGO_MANIFEST_DIR` at run time under
-/// `cargo run`, else at build time), or relative to the working directory.
+/// `assets/scenes` under this package (found through `CARGO_MANIFEST_DIR` at run time under
+/// `cargo run` of this package, else at build time), or relative to the working directory.
 pub fn default_scene_folder() -> PathBuf {
+    scene_folder_given(std::env::var_os("CARGO_MANIFEST_DIR").map(PathBuf::from))
+}
+
+/// The folder [`default_scene_folder`] picks when `CARGO_MANIFEST_DIR` is `manifest_dir` at
+/// run time: under it only if it is this package's (under `cargo run` of a game that uses
+/// the lab it is the game's, whose own `assets/scenes`, Bevy's place for its scenes, was read
+/// as the lab's until the fifty-seventh session).
+pub fn scene_folder_given(manifest_dir: Option<PathBuf>) -> PathBuf {
     let under = |root: PathBuf| root.join("assets").join("scenes");
-    std::env::var_os("CARGO_MANIFEST_DIR")
-        .map(|d| under(PathBuf::from(d)))
+    let this_package = |dir: &PathBuf| {
+        std::fs::read_to_string(dir.join("Cargo.toml")).is_ok_and(|manifest| {
+            manifest.contains(&format!("name = \"{}\"", env!("CARGO_PKG_NAME")))
+        })
+    };
+    manifest_dir
+        .filter(this_package)
+        .map(under)
         .filter(|p| p.is_dir())
         .or_else(|| Some(under(PathBuf::from(env!("CARGO_MANIFEST_DIR")))).filter(|p| p.is_dir()))
         .unwrap_or_else(|| under(PathBuf::from(".")))
@@ -172,7 +186,21 @@ impl Plugin for LabPlugin {
         #[cfg(feature = "render")]
         app.add_observer(scenes::scope_new_entity::<Node>);
         if let Some(folder) = &self.scene_folder {
-            for file in scenes::scene_files(folder) {
+            let files = scenes::scene_files(folder);
+            if files.is_empty() {
+                // Said in the chooser, which would otherwise be empty with no word why.
+                let why = match std::fs::read_dir(folder) {
+                    Err(e) => e.to_string(),
+                    Ok(_) => "no scene files (*.ron) there".to_owned(),
+                };
+                let error = format!("scene folder {}: {why}", folder.display());
+                warn!("{error}");
+                app.world_mut()
+                    .get_resource_or_init::<LabScenes>()
+                    .errors
+                    .push(error);
+            }
+            for file in files {
                 app.add_lab_scene_file(file);
             }
         }
@@ -215,10 +243,14 @@ fn open_start_scene(
                 Some(failed) => format!("--scene {id:?}: {failed}"),
                 None => {
                     let known: Vec<&str> = scenes.iter().map(|s| s.id.as_str()).collect();
+                    let known = if known.is_empty() {
+                        "none: there are no scenes".to_owned()
+                    } else {
+                        known.join(", ")
+                    };
                     format!(
                         "--scene {id:?}: no such scene (a scene file's name without .ron, one \
-                         of: {})",
-                        known.join(", ")
+                         of: {known})"
                     )
                 }
             };

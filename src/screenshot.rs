@@ -98,8 +98,9 @@ pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result
             number.parse::<u64>().ok()
         })
         .max()
-        .map_or(0, |highest| highest.saturating_add(1));
-    for n in next.. {
+        .map_or(Some(0), |highest| highest.checked_add(1));
+    // (`next..` would overflow past the largest number, a panic in the dev profile.)
+    for n in next.into_iter().flat_map(|next| next..=u64::MAX) {
         let path = folder.join(format!("sphere-lab-{n:03}.png"));
         let file = match std::fs::OpenOptions::new()
             .write(true)
@@ -124,7 +125,11 @@ pub fn save_screenshot(folder: &Path, mut image: RgbaImage, time: f64) -> Result
             })?;
         return Ok(path);
     }
-    unreachable!("an unbounded range has a free name")
+    Err(format!(
+        "no number left for a screenshot in {} (sphere-lab-{}.png is there)",
+        folder.display(),
+        u64::MAX
+    ))
 }
 
 /// Screenshots being saved on the I/O task pool: stamping a frame and encoding it as PNG

@@ -929,6 +929,25 @@ fn regression_screenshot_names_follow_the_order_taken() {
     );
 }
 
+/// Review of the fifty-seventh session: a folder holding `sphere-lab-18446744073709551615.png`
+/// (the largest number) made the next save count past it, a panic in the dev profile that
+/// took the lab down from the I/O pool. It is an error that says so.
+#[test]
+fn regression_screenshot_numbers_that_run_out_are_an_error() {
+    let dir = temp_dir("numbers_out");
+    std::fs::create_dir_all(&dir).unwrap();
+    let image = image::RgbaImage::new(16, 16);
+    std::fs::write(
+        dir.join(format!("sphere-lab-{}.png", u64::MAX - 1)),
+        b"kept",
+    )
+    .unwrap();
+    let last = sphere_lab::screenshot::save_screenshot(&dir, image.clone(), 1.0).unwrap();
+    assert_eq!(last, dir.join(format!("sphere-lab-{}.png", u64::MAX)));
+    let error = sphere_lab::screenshot::save_screenshot(&dir, image, 2.0).unwrap_err();
+    assert!(error.contains("no number left"), "{error}");
+}
+
 /// Review of 2026-12-01: a ball dropped onto a planet-sized floor sphere (settling_ball,
 /// light_on_heavy) was framed from its starting place only, and a ground plane was drawn
 /// there, above the real floor: the ball fell through the drawn ground and came to rest out
@@ -966,9 +985,21 @@ fn every_scene_file_gets_a_ground_its_spheres_do_not_fall_through() {
             // Walls too large to draw: a plane on the bottom wall's face.
             "gas_box" => Ground::Plane(-5.0),
             "ball_pit" => Ground::Plane(0.0),
-            // Nothing falls freely: a plane a little below the spheres.
+            // Nothing falls freely: a plane a little below the spheres (not the stage's own
+            // formula again: until the fifty-seventh session these five could not fail).
             _ => {
-                Ground::Plane(stage.low.y - 0.25 * (stage.high - stage.low).max_element().max(1.0))
+                let lowest = spheres
+                    .iter()
+                    .map(|(p, r, ..)| p.y - r)
+                    .fold(f32::INFINITY, f32::min);
+                let Ground::Plane(y) = stage.ground else {
+                    panic!("{id}: a plane, not {:?}", stage.ground)
+                };
+                assert!(
+                    y < lowest && y > lowest - 3.0,
+                    "{id}: a plane at {y}, the spheres down to {lowest}"
+                );
+                stage.ground
             }
         };
         assert_eq!(stage.ground, expected, "{id}");
@@ -1009,4 +1040,55 @@ fn a_planet_beside_above_or_far_below_the_spheres_is_not_their_floor() {
         assert_eq!(stage.ground, Ground::Open, "{far:?}");
         assert_eq!(stage.low.y, 2.5, "{far:?}");
     }
+}
+
+/// Review of the fifty-seventh session: a scene folder missing or holding no scene files left
+/// the chooser empty with no word why (and `--scene` listed "one of: " nothing). It is listed
+/// among the errors now.
+#[test]
+fn regression_a_missing_or_empty_scene_folder_says_so() {
+    let empty = temp_dir("no_scenes");
+    std::fs::create_dir_all(&empty).unwrap();
+    let missing = empty.join("missing");
+    for (folder, why) in [
+        (missing.clone(), "No such file"),
+        (empty.to_path_buf(), "no scene files"),
+    ] {
+        let mut app = lab(LabPlugin {
+            scene_folder: Some(folder.clone()),
+            start: Some("newtons_cradle".into()),
+            ..default()
+        });
+        app.update();
+        let scenes = app.world().resource::<LabScenes>();
+        assert_eq!(scenes.len(), 0);
+        let said = scenes.errors.join("\n");
+        assert!(
+            said.contains(&folder.display().to_string()) && said.contains(why),
+            "{said}"
+        );
+        assert!(said.contains("one of: none"), "{said}");
+    }
+}
+
+/// Review of the fifty-seventh session: under `cargo run` of a game that uses the lab,
+/// `CARGO_MANIFEST_DIR` names the game, and the lab read the game's own `assets/scenes` as
+/// its own. Only this package's folder is taken from it.
+#[test]
+fn regression_the_default_scene_folder_is_this_packages() {
+    let game = temp_dir("a_game");
+    std::fs::create_dir_all(game.join("assets/scenes")).unwrap();
+    std::fs::write(
+        game.join("Cargo.toml"),
+        "[package]\nname = \"a_game\"\nversion = \"0.1.0\"\n",
+    )
+    .unwrap();
+    let ours = scene_folder();
+    assert_eq!(scene_folder_given(Some(game.to_path_buf())), ours);
+    assert_eq!(
+        scene_folder_given(Some(PathBuf::from(env!("CARGO_MANIFEST_DIR")))),
+        ours
+    );
+    assert_eq!(scene_folder_given(None), ours);
+    assert_eq!(default_scene_folder(), ours);
 }

@@ -382,6 +382,11 @@ impl Generator {
 
     /// The spheres this generator makes, with errors naming it as generator `index`.
     pub fn spheres_at(&self, index: usize) -> Result<Vec<SphereSpec>, GenerateError> {
+        // A gas's walls count too (its count alone was checked until the fifty-seventh
+        // session: ten million and six spheres were made).
+        if let Some(error) = self.over_limit(index, 0) {
+            return Err(error);
+        }
         let check = Checked {
             index,
             kind: self.kind(),

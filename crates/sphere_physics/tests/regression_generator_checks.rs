@@ -103,6 +103,20 @@ fn regression_a_huge_count_is_an_error_not_an_abort() {
     // The scene still says how many spheres it asks for, without making them.
     assert_eq!(alone.len(), u64::from(over));
     assert_eq!(alone.to_string(), format!("huge ({over} spheres)"));
+    // A gas's six walls count too: alone, one of the largest count asked for 10 000 006
+    // spheres, and got them (found by review in the fifty-seventh session).
+    let gas = SceneDesc::from_ron(&format!(
+        "(name: \"gas\", generate: [Gas(count: {}, seed: 1, min: (-300.0, -300.0, -300.0),
+                                          max: (300.0, 300.0, 300.0), radius: 0.1, speed: 1.0)])",
+        sphere_physics::generate::MAX_GENERATED
+    ))
+    .unwrap();
+    // (Not `unwrap_err()`, whose panic would print ten million spheres.)
+    let Err(error) = gas.generate[0].spheres() else {
+        panic!("ten million and six spheres made");
+    };
+    assert_eq!(error.field, "count", "{error}");
+    assert!(error.to_string().contains("10000006"), "{error}");
 }
 
 /// Regression: a scene's `Display` counted only its listed spheres ("Gas in a box (0

@@ -1,6 +1,6 @@
-//! The tutorial's scene 4: thousands of small spheres fall onto a large fixed sphere, bounce,
-//! and slide off its frictionless sides, every collision found exactly (no tunnelling): the grid broad phase finds the pairs
-//! whose swept paths may meet, and the exact swept test finds when they do.
+//! The tutorial's scene 4: thousands of small spheres fall onto a large fixed sphere, bounce, and
+//! slide off its frictionless sides, every collision found exactly (no tunnelling): the grid broad
+//! phase finds the pairs whose swept paths may meet, and the exact swept test finds when they do.
 //!
 //! Keys: P pauses, N steps once while paused, R restarts, Space saves a screenshot with the
 //! simulated time on it, Enter opens the scene chooser (Up/Down select, Enter loads, Escape

@@ -185,20 +185,17 @@ impl Plugin for LabPlugin {
             );
         #[cfg(feature = "render")]
         app.add_observer(scenes::scope_new_entity::<Node>);
+        let mut folder_note = None;
         if let Some(folder) = &self.scene_folder {
             let files = scenes::scene_files(folder);
             if files.is_empty() {
-                // Said in the chooser, which would otherwise be empty with no word why.
+                // Said in the chooser if no scene is registered at all (see
+                // `open_start_scene`), which would otherwise be empty with no word why.
                 let why = match std::fs::read_dir(folder) {
                     Err(e) => e.to_string(),
                     Ok(_) => "no scene files (*.ron) there".to_owned(),
                 };
-                let error = format!("scene folder {}: {why}", folder.display());
-                warn!("{error}");
-                app.world_mut()
-                    .get_resource_or_init::<LabScenes>()
-                    .errors
-                    .push(error);
+                folder_note = Some(format!("scene folder {}: {why}", folder.display()));
             }
             for file in files {
                 app.add_lab_scene_file(file);
@@ -209,6 +206,7 @@ impl Plugin for LabPlugin {
             selected: 0,
         })
         .insert_resource(StartScene(self.start.clone()))
+        .insert_resource(SceneFolderNote(folder_note))
         .add_systems(Startup, open_start_scene);
     }
 }
@@ -216,6 +214,12 @@ impl Plugin for LabPlugin {
 /// The scene to open at start.
 #[derive(Resource)]
 struct StartScene(Option<String>);
+
+/// Why the scene folder gave no scenes, if it gave none: listed among the errors at start if
+/// no scene was registered at all (a game whose own scenes are there, run away from this
+/// repository's folder, is not told).
+#[derive(Resource)]
+struct SceneFolderNote(Option<String>);
 
 /// Opens the start scene, once every plugin has registered its scenes; the chooser stays open
 /// if there is none or it is unknown.
@@ -226,7 +230,14 @@ fn open_start_scene(
     mut next: ResMut<NextState<ActiveScene>>,
     pilot: Res<Autopilot>,
     mut exit: MessageWriter<AppExit>,
+    mut folder_note: ResMut<SceneFolderNote>,
 ) {
+    if let Some(note) = folder_note.0.take()
+        && scenes.is_empty()
+    {
+        warn!("{note}");
+        scenes.errors.push(note);
+    }
     let Some(id) = &start.0 else {
         return;
     };

@@ -1051,8 +1051,11 @@ fn regression_a_missing_or_empty_scene_folder_says_so() {
     std::fs::create_dir_all(&empty).unwrap();
     let missing = empty.join("missing");
     for (folder, why) in [
-        (missing.clone(), "No such file"),
-        (empty.to_path_buf(), "no scene files"),
+        (
+            missing.clone(),
+            std::fs::read_dir(&missing).unwrap_err().to_string(),
+        ),
+        (empty.to_path_buf(), "no scene files".to_owned()),
     ] {
         let mut app = lab(LabPlugin {
             scene_folder: Some(folder.clone()),
@@ -1064,11 +1067,21 @@ fn regression_a_missing_or_empty_scene_folder_says_so() {
         assert_eq!(scenes.len(), 0);
         let said = scenes.errors.join("\n");
         assert!(
-            said.contains(&folder.display().to_string()) && said.contains(why),
+            said.contains(&folder.display().to_string()) && said.contains(&why),
             "{said}"
         );
         assert!(said.contains("one of: none"), "{said}");
     }
+    // A game's own scene beside it: no word of the folder.
+    let mut app = lab(LabPlugin {
+        scene_folder: Some(missing),
+        ..default()
+    });
+    app.add_lab_scene(LabScene::new("own", "Own", "A game's own scene."), || {});
+    app.update();
+    let scenes = app.world().resource::<LabScenes>();
+    assert_eq!(scenes.len(), 1);
+    assert!(scenes.errors.is_empty(), "{:?}", scenes.errors);
 }
 
 /// Review of the fifty-seventh session: under `cargo run` of a game that uses the lab,

@@ -24,12 +24,12 @@
 //!   is put back, as is a removed [`PreviousSpherePosition`]).
 //! - **Change a component** ([`SphereVelocity`], [`SphereBody::radius`], [`Density`],
 //!   [`Restitution`], [`AppliedForce`], [`SpherePosition`] to teleport, [`FixedSphere`],
-//!   [`Tethered`], [`NeverSleeps`]): applied at the next fixed step's `Prepare`. Writing `Transform` does
-//!   nothing: it is the plugin's output. A velocity or position set by a system that ran
-//!   after `Prepare` in the same fixed step (a system in `FixedUpdate` with no order against
-//!   the plugin's sets may) is kept, not overwritten with the step's result, and applied at
-//!   the next step; order such a system `.before(SpherePhysicsSystems::Prepare)` to have it
-//!   applied in the step it runs in.
+//!   [`Tethered`], [`NeverSleeps`]): applied at the next fixed step's `Prepare`. Writing
+//!   `Transform` does nothing: it is the plugin's output. A velocity or position set by a system
+//!   that ran after `Prepare` in the same fixed step (a system in `FixedUpdate` with no order
+//!   against the plugin's sets may) is kept, not overwritten with the step's result, and applied at
+//!   the next step; order such a system `.before(SpherePhysicsSystems::Prepare)` to have it applied
+//!   in the step it runs in.
 //! - **Parent a sphere**: don't. The plugin reads and writes a sphere's `Transform` as its
 //!   place in the world, so a sphere must be a root entity, or the child of one at the origin,
 //!   neither rotated nor scaled.

@@ -169,6 +169,32 @@ impl SphereDesc {
         self
     }
 
+    /// [`SphereDesc::validate`], and the acceleration with the world's `gravity` finite (a
+    /// force and gravity each within range may still sum past it: every step was then
+    /// refused, blaming the velocity).
+    pub(crate) fn validate_under(
+        &self,
+        gravity: DVec3,
+        label: impl Fn() -> String,
+    ) -> Result<(), BodyError> {
+        self.validate(&label)?;
+        if !self.fixed {
+            // As `Body::acceleration` has it.
+            let acceleration = gravity + self.force * (1.0 / mass_of(self.density, self.radius));
+            if !acceleration.is_finite() {
+                let k = (0..3).find(|&k| !acceleration[k].is_finite()).unwrap_or(0);
+                return Err(BodyError {
+                    body: label(),
+                    id: None,
+                    field: Field::Force,
+                    value: self.force[k],
+                    reason: "with gravity must give a finite acceleration",
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Checks every field; `label` names the body in the error.
     pub(crate) fn validate(&self, label: impl Fn() -> String) -> Result<(), BodyError> {
         let err = |field, value: f64, reason| BodyError {

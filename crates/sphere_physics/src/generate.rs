@@ -258,12 +258,6 @@ impl Checked {
         max: [f64; 3],
         radius: f64,
     ) -> Result<Lattice, GenerateError> {
-        if count > MAX_GENERATED {
-            return Err(self.err(
-                "count",
-                format!("must be at most {MAX_GENERATED}, got {count}"),
-            ));
-        }
         self.positive("radius", radius)?;
         self.finite("min", &min)?;
         self.finite("max", &max)?;
@@ -382,15 +376,21 @@ impl Generator {
 
     /// The spheres this generator makes, with errors naming it as generator `index`.
     pub fn spheres_at(&self, index: usize) -> Result<Vec<SphereSpec>, GenerateError> {
-        // A gas's walls count too (its count alone was checked until the fifty-seventh
-        // session: ten million and six spheres were made).
-        if let Some(error) = self.over_limit(index, 0) {
-            return Err(error);
-        }
         let check = Checked {
             index,
             kind: self.kind(),
         };
+        // A gas's walls count too (its count alone was checked until the fifty-seventh
+        // session: ten million and six spheres were made).
+        if self.len() > u64::from(MAX_GENERATED) {
+            return Err(check.err(
+                "count",
+                format!(
+                    "makes {} spheres (a gas's walls counted), more than {MAX_GENERATED}",
+                    self.len()
+                ),
+            ));
+        }
         match *self {
             Generator::Shower {
                 count,

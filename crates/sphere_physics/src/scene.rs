@@ -78,6 +78,10 @@ pub struct SceneDesc {
     pub view: Option<[[f64; 3]; 2]>,
 }
 
+/// The largest scene file [`SceneDesc::load`] reads, 4 GiB: some 40 million spheres listed
+/// one by one (a generator makes up to ten million from a line).
+pub const MAX_SCENE_BYTES: u64 = 1 << 32;
+
 /// One sphere in a scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -177,23 +181,40 @@ impl SceneDesc {
             })
     }
 
-    /// Reads and parses a scene file. Only a regular file (or a link to one) is read: a device
-    /// or a pipe (`/dev/zero`, say, which would be read until memory ran out, or a pipe no one
-    /// writes to, read for ever) is refused as one.
+    /// Reads and parses a scene file. A regular file or a pipe (`<(make_scene)`, `/dev/stdin`)
+    /// is read, up to [`MAX_SCENE_BYTES`]; a folder or a device is refused (`/dev/zero` was
+    /// read until memory ran out, before the fifty-seventh session).
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SceneError> {
+        use std::io::Read;
         let path = path.as_ref();
         let io = |source| SceneError::Io {
             path: path.to_owned(),
             source,
         };
-        // Asked of the path before it is opened: opening a pipe waits for a writer.
-        if !std::fs::metadata(path).map_err(io)?.is_file() {
-            return Err(io(std::io::Error::new(
+        let refused = |what: &str| {
+            io(std::io::Error::new(
                 std::io::ErrorKind::InvalidInput,
-                "not a regular file",
-            )));
+                format!("{what}, not a scene file"),
+            ))
+        };
+        let kind = std::fs::metadata(path).map_err(io)?.file_type();
+        if kind.is_dir() {
+            return Err(refused("a folder"));
         }
-        let bytes = std::fs::read(path).map_err(io)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileTypeExt;
+            if kind.is_char_device() || kind.is_block_device() || kind.is_socket() {
+                return Err(refused("a device"));
+            }
+        }
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|file| file.take(MAX_SCENE_BYTES + 1).read_to_end(&mut bytes))
+            .map_err(io)?;
+        if bytes.len() as u64 > MAX_SCENE_BYTES {
+            return Err(refused("more than 4 GiB"));
+        }
         // Text that is not UTF-8 is placed too: the line and column of its first bad byte.
         let text = std::str::from_utf8(&bytes).map_err(|error| {
             let good = &bytes[..error.valid_up_to()];

@@ -3,7 +3,8 @@
 use serde::{Deserialize, Serialize};
 
 /// Tolerance for floating-point equality: `a` equals `b` when
-/// `|a - b| <= epsilon * (1 + max(|a|, |b|))`, i.e. absolute near zero and relative for large values.
+/// `|a - b| <= epsilon * (1 + max(|a|, |b|))`, i.e. absolute near zero and relative for large
+/// values; an infinity equals only itself.
 ///
 /// Every "are these equal?" question in the engine (are two spheres touching, is a normal speed
 /// zero) goes through [`Tolerance::eq`], so there is exactly one knob.

@@ -94,7 +94,8 @@ pub struct Settings {
     /// [`SLEEP_CONTACT`](crate::sleep::SLEEP_CONTACT) of the smaller radius) falls asleep
     /// together once every one of them has stayed calm for [`Sleep::time`] (checked a few times
     /// in that time), provided it rests on a fixed sphere that does not move, every one of them
-    /// is accelerated (gravity, or its force), none hangs on a string, none touches a fixed
+    /// is accelerated (gravity, or its force), none hangs on a string, none is
+    /// [`SphereDesc::never_sleeps`](crate::SphereDesc::never_sleeps), none touches a fixed
     /// sphere that moves, and no two are deeper into each other than `SLEEP_CONTACT` of the
     /// smaller radius (such a pair is still being moved apart): a body drifting slowly through
     /// space, or anything in zero gravity with no force, never falls asleep. Falling asleep
@@ -108,7 +109,8 @@ pub struct Settings {
     /// it is changed or removed through the world ([`World::set_desc`],
     /// [`World::set_velocity`], [`World::set_position`], [`World::set_force`],
     /// [`World::remove_body`], or [`World::wake`]), when a fixed sphere touching it is added,
-    /// changed or removed, and at the next step after gravity changes or sleeping is turned
+    /// changed or removed (a force set on a fixed sphere, which no force moves, is no change),
+    /// and at the next step after gravity changes or sleeping is turned
     /// off (until then [`Body::is_asleep`] still tells of the last step). A world whose
     /// dynamic bodies are all asleep, with no fixed body moving, takes its steps without work
     /// ([`StepStats::quiet`]). [`Body::is_asleep`] and [`StepStats::asleep`] tell.
@@ -351,7 +353,7 @@ impl World {
     /// Adds a sphere; on invalid input nothing is added and the error names the body and field.
     pub fn add_sphere(&mut self, desc: SphereDesc) -> Result<BodyId, BodyError> {
         let id = BodyId(self.next_id);
-        desc.validate(|| label(desc.name.as_deref(), id))?;
+        desc.validate_under(self.settings.gravity, || label(desc.name.as_deref(), id))?;
         self.next_id += 1;
         self.bodies.push(Body::new(id, desc));
         self.sleeper.added();
@@ -420,7 +422,7 @@ impl World {
     /// Replaces a body's description (position, velocity, radius, ...), validated as on adding.
     pub fn set_desc(&mut self, id: BodyId, desc: SphereDesc) -> Result<(), WorldError> {
         let index = self.index(id)?;
-        desc.validate(|| label(desc.name.as_deref(), id))
+        desc.validate_under(self.settings.gravity, || label(desc.name.as_deref(), id))
             .map_err(|e| BodyError { id: Some(id), ..e })?;
         self.woken_by(index);
         self.bodies[index] = Body::new(id, desc);
@@ -463,12 +465,20 @@ impl World {
             }
             .into());
         }
+        let body = &mut self.bodies[index];
+        // A force on a fixed body, which no force moves, wakes nothing (it woke everything
+        // touching it, until the fifty-seventh session). Any other value set wakes the body's
+        // group, even one it already had: setting is how a game says "this changed", as in
+        // rapier and avian (and `World::wake` is there to wake a body without changing it).
+        let unfelt = field == Field::Force && body.is_fixed();
         // Validate the whole description (a position beyond the body's string is invalid), in
         // place: the old value is put back if it fails (no copy of the description, whose name
         // would be allocated at every call).
-        let body = &mut self.bodies[index];
         let previous = std::mem::replace(slot(&mut body.desc), value);
-        if let Err(e) = body.desc.validate(|| label(body.name(), id)) {
+        if let Err(e) = body
+            .desc
+            .validate_under(self.settings.gravity, || label(body.name(), id))
+        {
             *slot(&mut body.desc) = previous;
             return Err(BodyError { id: Some(id), ..e }.into());
         }
@@ -478,7 +488,9 @@ impl World {
             self.sleeper
                 .wake_around(&mut self.bodies, previous, radius, sleeping);
         }
-        self.woken_by(index);
+        if !unfelt {
+            self.woken_by(index);
+        }
         Ok(())
     }
 

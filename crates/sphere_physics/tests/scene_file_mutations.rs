@@ -137,7 +137,10 @@ proptest! {
                 prop_assert!(line >= 1 && line <= lines + 1, "line {} of {}: {}", line, lines, message);
                 // Within its line (or just past its end, where the text ran out).
                 let width = text.lines().nth(line - 1).map_or(0, |l| l.chars().count());
-                prop_assert!(column >= 1 && column <= width + 2, "column {} of {}: {}", column, width, message);
+                prop_assert!(
+                    column >= 1 && column <= width + 2,
+                    "column {} of {}: {}", column, width, message
+                );
                 prop_assert!(!message.is_empty());
             }
             Err(other) => prop_assert!(false, "not a parse error: {other}"),

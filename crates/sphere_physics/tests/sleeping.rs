@@ -716,3 +716,21 @@ fn a_scene_file_names_the_spheres_that_never_sleep() {
     let world = scene.build().unwrap();
     assert!(world.bodies()[0].desc().never_sleeps);
 }
+
+/// Review of the fifty-seventh session: a force set on a fixed floor, which no force moves,
+/// woke everything resting on it (a game writing its floor's state back each frame kept every
+/// group on it awake). It wakes nothing now; a change the floor feels still does.
+#[test]
+fn regression_a_force_on_a_fixed_floor_wakes_nothing() {
+    let (mut world, floor) = world_with_floor();
+    let ball = ball_at(&mut world, 0.0, 0.5);
+    step_until_asleep(&mut world, ball, 180);
+    for k in 0..120 {
+        world.set_force(floor, DVec3::X * f64::from(k)).unwrap();
+        world.step(DT).unwrap();
+        assert!(asleep(&world, ball), "step {k}");
+    }
+    // Moving the floor (as a kinematic sphere) wakes it.
+    world.set_velocity(floor, DVec3::X * 1e-3).unwrap();
+    assert!(!asleep(&world, ball));
+}

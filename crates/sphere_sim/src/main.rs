@@ -121,7 +121,8 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
     // errors found after parsing name the file too (parse errors already say where).
     let prepared = Prepared::new(&scene, playback).map_err(|e| match e {
         PlayError::Scene(SceneError::Io { .. } | SceneError::Parse { .. })
-        | PlayError::TooManySteps { .. } => bad_input(e),
+        | PlayError::TooManySteps { .. }
+        | PlayError::LastStepTooShort { .. } => bad_input(e),
         e => bad_input(format!("{}: {e}", args.scene.display())),
     })?;
     // An output that is the scene or the trace would overwrite it.

@@ -45,6 +45,25 @@ pub enum PlayError {
         /// Why it was refused.
         error: WorldError,
     },
+    /// The duration ends with a step too short to take: its substeps would not be normal
+    /// numbers (the full steps' are).
+    #[error(
+        "--duration {} ends with a step of {} s, too short to take (each of its {substeps} \
+         substep(s) would not be a normal number): ask for a whole number of steps of {} s",
+        Readable(*.duration),
+        Readable(*.last),
+        Readable(*.dt)
+    )]
+    LastStepTooShort {
+        /// Duration asked for.
+        duration: f64,
+        /// The full steps' length.
+        dt: f64,
+        /// The last, shorter step's.
+        last: f64,
+        /// Substeps a step.
+        substeps: u32,
+    },
     /// The observer stopped the run after this step (see [`Observer::step_done`]).
     #[error("stopped after step {step}")]
     Stopped {
@@ -137,7 +156,7 @@ pub struct BodyReport {
     pub asleep: bool,
 }
 
-/// Energy and momentum at one instant.
+/// Energy, momentum and the largest overlap at one instant.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Snapshot {
     /// Kinetic energy.
@@ -225,7 +244,7 @@ pub struct Report {
     pub steps: u64,
     /// Spheres, in the scene file's order (listed spheres, then generated ones).
     pub bodies: Vec<BodyReport>,
-    /// Energy and momentum before the first step.
+    /// Energy, momentum and the largest overlap before the first step.
     pub initial: Snapshot,
     /// Statistics of the run.
     pub stats: RunStats,
@@ -301,14 +320,23 @@ impl Prepared {
         // Each step's substeps (the full steps', and the last shorter one's) must be normal
         // numbers, as the world checks at each step: checked here, before the run starts.
         let substeps = world.settings().substeps;
-        for step in [dt, plan.last].into_iter().filter(|&step| step > 0.0) {
-            if !(step / f64::from(substeps)).is_normal() {
-                return Err(PlayError::World(WorldError::InvalidSetting {
-                    field: "substeps",
-                    value: format!("{substeps}"),
-                    reason: "must leave each substep of this time step a normal number",
-                }));
-            }
+        let normal = |step: f64| (step / f64::from(substeps)).is_normal();
+        if !normal(dt) {
+            return Err(PlayError::World(WorldError::InvalidSetting {
+                field: "substeps",
+                value: format!("{substeps}"),
+                reason: "must leave each substep of this time step a normal number",
+            }));
+        }
+        // (Blamed on the substeps until the fifty-seventh session, though the duration asked
+        // for it.)
+        if plan.last > 0.0 && !normal(plan.last) {
+            return Err(PlayError::LastStepTooShort {
+                duration: playback.duration,
+                dt,
+                last: plan.last,
+                substeps,
+            });
         }
         Ok(Self {
             world,

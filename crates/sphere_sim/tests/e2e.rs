@@ -490,22 +490,59 @@ fn regression_a_closed_pipe_is_no_panic() {
     }
 }
 
-/// Review of the fifty-seventh session: a scene path that is not a regular file was read to
-/// its end: `/dev/zero` until memory ran out, a pipe for ever. It is bad input now.
+/// Review of the fifty-seventh session: a duration whose last, shorter step is subnormal was
+/// refused blaming the scene's substeps (of which it had one); the duration is to blame.
+#[test]
+fn regression_a_last_step_too_short_blames_the_duration() {
+    let scene = assets().join("two_spheres.ron");
+    assert_bad_input(
+        &[
+            "run",
+            scene.to_str().unwrap(),
+            "--dt",
+            "3e-308",
+            "--duration",
+            "4e-308",
+        ],
+        &["--duration 4e-308 ends with a step of", "3e-308"],
+    );
+}
+
+/// Review of the fifty-seventh session: a scene path that was a device was read to its end:
+/// `/dev/zero` until memory ran out. A device or a folder is bad input now; a pipe is read.
 #[test]
 fn regression_a_scene_that_is_not_a_regular_file_is_bad_input() {
     if Path::new("/dev/zero").exists() {
         assert_bad_input(
             &["run", "/dev/zero", "--duration", "1"],
-            &["/dev/zero", "not a regular file"],
+            &["/dev/zero", "a device, not a scene file"],
         );
     }
     let folder = scratch("a_folder.ron");
     std::fs::create_dir_all(&folder).unwrap();
     assert_bad_input(
         &["run", folder.to_str().unwrap(), "--duration", "1"],
-        &["a_folder.ron", "not a regular file"],
+        &["a_folder.ron", "a folder, not a scene file"],
     );
+    // A scene piped in (`/dev/stdin`, as `<(make_scene)` gives a pipe) is read.
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sphere-sim"))
+        .args(["run", "/dev/stdin", "--duration", "0.1"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let text = std::fs::read(assets().join("two_spheres.ron")).unwrap();
+    child.stdin.take().unwrap().write_all(&text).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["steps"], 6);
 }
 
 /// Review of the fifty-seventh session: a trace that failed part-way (a full disk) was not

@@ -17,8 +17,9 @@
 //! statistics is worked out here, once for as long as the same islands are left out: no
 //! kinetic energy or momentum (they are at rest), their potential energy (added to the
 //! step's own: equal to `World::potential_energy` to rounding, summed in another order), and
-//! the deepest overlap among them and the still fixed bodies (unchanged while they sleep),
-//! which the step's own deepest overlap is taken together with. The step's scales and
+//! the deepest overlap among them and the still fixed bodies (unchanged while they sleep:
+//! kept island by island, worked out once for as long as the same bodies sleep), which the
+//! step's own deepest overlap is taken together with. The step's scales and
 //! collision budget count them as a step of every body would (see `StepContext`).
 //!
 //! What it costs: the bodies not asleep, listed as bodies come and go, are looked at once a
@@ -49,6 +50,9 @@ struct IslandBox {
     hi: DVec3,
     largest: f64,
     lightest: f64,
+    /// The deepest overlap of a pair with one of its spheres and a sphere asleep or fixed (at
+    /// least 0), once worked out for this index (see [`Dormant::deepest_known`]).
+    deepest: f64,
 }
 
 /// The choice of a step's bodies, and what the bodies left out add to its statistics.
@@ -100,6 +104,10 @@ pub(crate) struct Dormant {
     overlap_for: Option<(u64, Vec<u64>)>,
     /// The potential energy of the bodies left out (for the same choice as `overlap`).
     potential: f64,
+    /// Whether each island's `deepest` is worked out for the index as it stands.
+    deepest_known: bool,
+    /// Each body's place in `boxes` if it is asleep (else `u32::MAX`), by world index.
+    box_of: Vec<u32>,
 }
 
 impl Dormant {
@@ -283,6 +291,9 @@ impl Dormant {
                 *i -= 1;
             }
         }
+        if index < self.box_of.len() {
+            self.box_of.remove(index);
+        }
     }
 
     /// A body was added, at world index `index` (the last): awake.
@@ -312,6 +323,9 @@ impl Dormant {
             .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         self.by_island.sort_unstable();
         self.boxes.clear();
+        self.deepest_known = false;
+        self.box_of.clear();
+        self.box_of.resize(bodies.len(), u32::MAX);
         for &(island, i) in &self.by_island {
             let body = &bodies[i as usize];
             let (p, r) = (body.position(), body.radius());
@@ -328,8 +342,10 @@ impl Dormant {
                     hi: p + r,
                     largest: r,
                     lightest: body.mass(),
+                    deepest: 0.0,
                 }),
             }
+            self.box_of[i as usize] = (self.boxes.len() - 1) as u32;
         }
     }
 
@@ -376,6 +392,39 @@ impl Dormant {
             }
             _ => None,
         }
+    }
+
+    /// Whether each island's deepest overlap is worked out for the bodies asleep as they are
+    /// indexed (once per generation: the bodies asleep and the fixed ones stay where they are
+    /// while it lasts). Until the fifty-seventh session every change of the islands taken
+    /// looked at every pair of the world again: a ball rolling among 10 000 marbles asleep
+    /// apart, each its own island, paid 16 ns a marble a step for it.
+    pub fn deepest_known(&self) -> bool {
+        self.deepest_known
+    }
+
+    /// Raises the deepest overlap of a pair with the body at world index `index`, asleep, to
+    /// `overlap` (its island's).
+    pub fn raise_deepest(&mut self, index: usize, overlap: f64) {
+        if let Some(&k) = self.box_of.get(index).filter(|&&k| k != u32::MAX) {
+            let b = &mut self.boxes[k as usize];
+            b.deepest = b.deepest.max(overlap);
+        }
+    }
+
+    /// Every island's deepest overlap is worked out (see [`Dormant::raise_deepest`]).
+    pub fn set_deepest_known(&mut self) {
+        self.deepest_known = true;
+    }
+
+    /// The deepest overlap of a pair with a body left out of the step (at least 0): the
+    /// deepest of the islands not taken. (A pair of such a body and one awake cannot overlap:
+    /// its island would be within the awake one's reach, and taken.)
+    pub fn deepest_left_out(&self) -> f64 {
+        self.boxes
+            .iter()
+            .filter(|b| self.islands.binary_search(&b.island).is_err())
+            .fold(0.0f64, |deepest, b| deepest.max(b.deepest))
     }
 
     /// Records the deepest overlap of a pair with a body left out, and their potential

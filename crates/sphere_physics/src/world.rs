@@ -650,20 +650,30 @@ impl World {
                         for &i in &dormant.in_step {
                             taken[i as usize] = true;
                         }
-                        let mut deepest = 0.0f64;
-                        self.solver.pairs_near(
-                            bodies,
-                            |_| 0.0,
-                            |i, j| {
-                                let (a, b) = (&bodies[i], &bodies[j]);
-                                let left_out = !taken[i] || !taken[j];
-                                if left_out && !(a.is_fixed() && b.is_fixed()) {
+                        if !dormant.deepest_known() {
+                            // Each island's deepest overlap with a sphere asleep or fixed,
+                            // once for as long as the same bodies sleep.
+                            self.solver.pairs_near(
+                                bodies,
+                                |_| 0.0,
+                                |i, j| {
+                                    let (a, b) = (&bodies[i], &bodies[j]);
+                                    let still = |x: &Body| x.asleep || x.is_fixed();
+                                    if !(a.asleep || b.asleep) || !still(a) || !still(b) {
+                                        return;
+                                    }
                                     let overlap = a.radius() + b.radius()
                                         - (b.position() - a.position()).length();
-                                    deepest = deepest.max(overlap);
-                                }
-                            },
-                        );
+                                    for (k, body) in [(i, a), (j, b)] {
+                                        if body.asleep {
+                                            dormant.raise_deepest(k, overlap);
+                                        }
+                                    }
+                                },
+                            );
+                            dormant.set_deepest_known();
+                        }
+                        let deepest = dormant.deepest_left_out();
                         let potential = bodies
                             .iter()
                             .zip(&taken)

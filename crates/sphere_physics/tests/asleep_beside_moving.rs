@@ -317,3 +317,77 @@ proptest! {
         prop_assert_eq!(first, run()?);
     }
 }
+
+/// Marbles asleep apart on a floor, each its own island (pairs of them touching, one island
+/// each), and a ball rolling among them, knocking some awake: the islands a step takes
+/// change from step to step, and each step's statistics are still the bodies' own, to the
+/// bit. (Since the fifty-seventh session the deepest overlap of the islands left out is kept
+/// island by island, worked out once while the same bodies sleep, where every change of the
+/// islands taken looked at every pair of the world again.)
+#[test]
+fn a_ball_rolling_among_marbles_asleep_apart_keeps_the_statistics_exact() {
+    let mut world = World::new(Settings {
+        sleep: Some(Sleep::default()),
+        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
+    });
+    world
+        .add_sphere(SphereDesc::new(1e4).at(DVec3::NEG_Y * 1e4).fixed())
+        .unwrap();
+    for i in 0..16 {
+        for j in 0..16 {
+            let at = DVec3::new(f64::from(i) * 0.5, 0.1, f64::from(j) * 0.5);
+            world
+                .add_sphere(SphereDesc::new(0.1).at(at).with_restitution(0.5))
+                .unwrap();
+            if (i + j) % 5 == 0 {
+                // A second marble touching it: an island of two.
+                world
+                    .add_sphere(
+                        SphereDesc::new(0.1)
+                            .at(at + DVec3::Z * 0.2)
+                            .with_restitution(0.5),
+                    )
+                    .unwrap();
+            }
+        }
+    }
+    let marbles = world.len() - 1;
+    for _ in 0..600 {
+        world.step(DT).unwrap();
+        if world.stats().asleep as usize == marbles {
+            break;
+        }
+    }
+    assert_eq!(
+        world.stats().asleep as usize,
+        marbles,
+        "the marbles fall asleep"
+    );
+    world
+        .add_sphere(
+            SphereDesc::new(0.1)
+                .at(DVec3::new(-1.0, 0.1, 2.1))
+                .moving(DVec3::new(3.0, 0.0, 0.4))
+                .with_restitution(0.5),
+        )
+        .unwrap();
+    let (mut left_out, mut choices, mut last, mut struck) = (0, 0, None, 0);
+    for step in 0..240 {
+        let stats = *world.step(DT).unwrap();
+        struck += world.collisions().iter().filter(|c| !c.resting).count();
+        check_stats(&mut world, &stats, &format!("step {step}"));
+        if let Some(listed) = world.last_step_bodies() {
+            left_out += 1;
+            let listed = listed.to_vec();
+            if last.as_ref() != Some(&listed) {
+                choices += 1;
+            }
+            last = Some(listed);
+        }
+    }
+    assert!(
+        left_out > 100 && choices > 10,
+        "{left_out} steps left bodies out, {choices} choices"
+    );
+    assert!(struck > 0, "the ball strikes marbles");
+}

@@ -326,13 +326,7 @@ proptest! {
 /// islands taken looked at every pair of the world again.)
 #[test]
 fn a_ball_rolling_among_marbles_asleep_apart_keeps_the_statistics_exact() {
-    let mut world = World::new(Settings {
-        sleep: Some(Sleep::default()),
-        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
-    });
-    world
-        .add_sphere(SphereDesc::new(1e4).at(DVec3::NEG_Y * 1e4).fixed())
-        .unwrap();
+    let (mut world, _) = common::sleeping_on_a_floor(1e4);
     for i in 0..16 {
         for j in 0..16 {
             let at = DVec3::new(f64::from(i) * 0.5, 0.1, f64::from(j) * 0.5);

@@ -20,6 +20,20 @@ fn energy(inverse_masses: &[f64], velocities: &[DVec3]) -> f64 {
         .sum()
 }
 
+/// The strike below, solved: the scale `s` of the restitution impulse that keeps the energy,
+/// and the three balls' speeds after it, in units of the striker's.
+fn line_of_two_answer() -> (f64, [f64; 3]) {
+    let s = 3f64.sqrt() / 2.0;
+    (
+        s,
+        [
+            1.0 / 3.0 - s * 2.0 / 3.0,
+            1.0 / 3.0 + s * 2.0 / 3.0,
+            1.0 / 3.0,
+        ],
+    )
+}
+
 #[test]
 fn regression_a_strike_on_a_line_of_two_with_mixed_restitutions_gains_no_energy() {
     // Three equal balls on the x axis: the first at 1 m/s strikes the second, which touches
@@ -36,12 +50,7 @@ fn regression_a_strike_on_a_line_of_two_with_mixed_restitutions_gains_no_energy(
     let mut velocities = before;
     let mut impulses = Vec::new();
     resolve_simultaneous(&inverse, &mut velocities, &contacts, &mut impulses);
-    let s = 3f64.sqrt() / 2.0;
-    let expected = [
-        1.0 / 3.0 - s * 2.0 / 3.0,
-        1.0 / 3.0 + s * 2.0 / 3.0,
-        1.0 / 3.0,
-    ];
+    let (s, expected) = line_of_two_answer();
     for (v, x) in velocities.iter().zip(expected) {
         assert!((*v - DVec3::X * x).length() <= 1e-12, "{velocities:?}");
     }
@@ -96,12 +105,7 @@ fn regression_the_strike_of_a_huge_energy_is_scaled_too() {
     let mut velocities = [DVec3::X * speed, DVec3::ZERO, DVec3::ZERO];
     let mut impulses = Vec::new();
     resolve_simultaneous(&inverse, &mut velocities, &contacts, &mut impulses);
-    let s = 3f64.sqrt() / 2.0;
-    let expected = [
-        1.0 / 3.0 - s * 2.0 / 3.0,
-        1.0 / 3.0 + s * 2.0 / 3.0,
-        1.0 / 3.0,
-    ];
+    let (_, expected) = line_of_two_answer();
     for (v, x) in velocities.iter().zip(expected) {
         assert!(
             (*v / speed - DVec3::X * x).length() <= 1e-12,

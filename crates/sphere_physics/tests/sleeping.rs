@@ -13,19 +13,7 @@ const FLOOR: f64 = 1.0e4;
 /// A world under Earth gravity with sleeping on (default `Sleep`) and a floor whose top is at
 /// y = 0; returns the floor's id.
 fn world_with_floor() -> (World, BodyId) {
-    let settings = Settings {
-        sleep: Some(Sleep::default()),
-        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
-    };
-    let mut world = World::new(settings);
-    let floor = world
-        .add_sphere(
-            SphereDesc::new(FLOOR)
-                .at(DVec3::new(0.0, -FLOOR, 0.0))
-                .fixed(),
-        )
-        .unwrap();
-    (world, floor)
+    common::sleeping_on_a_floor(FLOOR)
 }
 
 /// A ball of radius 0.5 and restitution 0.5 at (x, y, 0).
@@ -640,13 +628,7 @@ fn removing_a_sphere_leaves_every_group_asleep_with_its_own() {
 #[test]
 fn a_sphere_that_never_sleeps_slides_on_under_a_small_force_and_keeps_its_group_awake() {
     // A floor so wide that it is flat within a part in 1e7 over the 40 m used here.
-    let mut world = World::new(Settings {
-        sleep: Some(Sleep::default()),
-        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
-    });
-    world
-        .add_sphere(SphereDesc::new(1e8).at(DVec3::NEG_Y * 1e8).fixed())
-        .unwrap();
+    let (mut world, _) = common::sleeping_on_a_floor(1e8);
     let push = 0.095;
     let pushed = |world: &mut World, x: f64, never: bool| {
         let mut desc = SphereDesc::new(0.5)

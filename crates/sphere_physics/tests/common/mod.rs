@@ -3,8 +3,8 @@
 //! (alone or on a lattice) that must each collide within one step, a pit of spheres dropped into an open box,
 //! spheres among others hanging on strings, a crowd placed overlapping with no gravity, a
 //! crowd crushed together with a small collision budget, and
-//! the deepest overlap (also beyond the contact band) and centre of mass of a world; and the
-//! property tests' configuration from a fixed seed.
+//! the deepest overlap (also beyond the contact band) and centre of mass of a world, a world
+//! with sleeping on above a floor; and the property tests' configuration from a fixed seed.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
@@ -410,4 +410,17 @@ pub fn heavy_ball_into_a_line() -> World {
             .unwrap();
     }
     world
+}
+
+/// A world under Earth gravity with sleeping on (`Sleep::default()`) and a fixed floor of
+/// radius `floor` whose top is at y = 0; returns the floor's id too.
+pub fn sleeping_on_a_floor(floor: f64) -> (World, BodyId) {
+    let mut world = World::new(Settings {
+        sleep: Some(sphere_physics::Sleep::default()),
+        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
+    });
+    let id = world
+        .add_sphere(SphereDesc::new(floor).at(DVec3::NEG_Y * floor).fixed())
+        .unwrap();
+    (world, id)
 }

@@ -5,11 +5,13 @@
 //! (one simultaneous group of 40 000 impacts: it took 0.35 to 0.41 s while groups were solved
 //! in quadratic time, 0.08 to 0.11 s since), and of a 200 × 200 sheet of spheres settling at
 //! one instant, each onto its own fixed sphere (40 000 resting impacts, each its own part of
-//! one group).
+//! one group). And, with sleeping on, a ball rolling for a second among 10 000 marbles asleep
+//! apart on a floor, each its own island (the step leaves out the islands beyond the ball's
+//! reach, and the islands it takes change as it rolls).
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use sphere_bench::scenes;
-use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
+use sphere_physics::{Settings, Sleep, SphereDesc, World, glam::DVec3};
 
 fn step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
@@ -95,5 +97,54 @@ fn simultaneous(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, step, simultaneous);
+/// 100 × 100 marbles of radius 0.1, 0.5 m apart, asleep on a wide floor, and a ball rolling
+/// among them at 3 m/s (returned: the world and the ball's id).
+fn marbles_asleep() -> (World, sphere_physics::BodyId) {
+    let mut world = World::new(Settings {
+        sleep: Some(Sleep::default()),
+        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
+    });
+    world
+        .add_sphere(SphereDesc::new(1e5).at(DVec3::NEG_Y * 1e5).fixed())
+        .expect("valid");
+    for i in 0..100 {
+        for j in 0..100 {
+            let at = DVec3::new(f64::from(i) * 0.5, 0.1, f64::from(j) * 0.5);
+            let marble = SphereDesc::new(0.1).at(at).with_restitution(0.5);
+            world.add_sphere(marble).expect("valid");
+        }
+    }
+    for _ in 0..300 {
+        world.step(1.0 / 60.0).expect("valid dt");
+    }
+    assert_eq!(world.stats().asleep, 10_000, "the marbles fall asleep");
+    let ball = world.add_sphere(SphereDesc::new(0.1)).expect("valid");
+    (world, ball)
+}
+
+fn sleeping(c: &mut Criterion) {
+    let mut group = c.benchmark_group("sleeping");
+    group.sample_size(10);
+    let (mut world, ball) = marbles_asleep();
+    // Each iteration rolls the ball for a second (60 steps) between two rows of marbles (it
+    // grazes none; the islands within its reach change as it rolls), a different pair of rows
+    // each time.
+    let mut row = 0;
+    group.bench_function("rolling among marbles/10000", |b| {
+        b.iter(|| {
+            row = (row + 7) % 99;
+            let z = f64::from(row) * 0.5 + 0.25;
+            world
+                .set_position(ball, DVec3::new(-1.0, 0.1, z))
+                .expect("valid");
+            world.set_velocity(ball, DVec3::X * 3.0).expect("valid");
+            (0..60)
+                .map(|_| world.step(1.0 / 60.0).expect("valid dt").collisions)
+                .sum::<u32>()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, step, simultaneous, sleeping);
 criterion_main!(benches);

@@ -5,8 +5,10 @@
 //! the awake bodies touching a fixed sphere that is moved, changed or removed are calm from
 //! then on only.
 
+mod common;
+
 use sphere_physics::glam::DVec3;
-use sphere_physics::{BodyId, Settings, Sleep, SphereDesc, World};
+use sphere_physics::{BodyId, SphereDesc, World};
 
 const DT: f64 = 1.0 / 64.0;
 const FLOOR: f64 = 1.0e4;
@@ -14,17 +16,7 @@ const FLOOR: f64 = 1.0e4;
 /// A ball of radius 0.5 (restitution 0.5) resting on a floor whose top is at y = 0, a fixed
 /// peg just beside it, sleeping on.
 fn ball_on_floor() -> (World, BodyId, BodyId) {
-    let mut world = World::new(Settings {
-        sleep: Some(Sleep::default()),
-        ..Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0))
-    });
-    let floor = world
-        .add_sphere(
-            SphereDesc::new(FLOOR)
-                .fixed()
-                .at(DVec3::new(0.0, -FLOOR, 0.0)),
-        )
-        .unwrap();
+    let (mut world, floor) = common::sleeping_on_a_floor(FLOOR);
     // A peg 1 mm from the ball's side.
     world
         .add_sphere(SphereDesc::new(0.1).fixed().at(DVec3::new(0.601, 0.5, 0.0)))

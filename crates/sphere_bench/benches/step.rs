@@ -7,7 +7,8 @@
 //! one instant, each onto its own fixed sphere (40 000 resting impacts, each its own part of
 //! one group). And, with sleeping on, a ball rolling for a second among 10 000 marbles asleep
 //! apart on a floor, each its own island (the step leaves out the islands beyond the ball's
-//! reach, and the islands it takes change as it rolls).
+//! reach, and the islands it takes change as it rolls), and a step after one of those
+//! marbles is woken (the bodies asleep change at every step).
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use sphere_bench::scenes;
@@ -141,6 +142,24 @@ fn sleeping(c: &mut Criterion) {
             (0..60)
                 .map(|_| world.step(1.0 / 60.0).expect("valid dt").collisions)
                 .sum::<u32>()
+        })
+    });
+    // Each iteration wakes one marble (a different one each time) and takes one step: the
+    // set of bodies asleep changes at every step (each marble woken falls asleep again a
+    // second later), which the index of the bodies asleep follows.
+    let (mut world, _) = marbles_asleep();
+    let marbles: Vec<_> = world
+        .bodies()
+        .iter()
+        .filter(|b| !b.is_fixed())
+        .map(|b| b.id())
+        .collect();
+    let mut next = 0;
+    group.bench_function("a marble woken among marbles/10000", |b| {
+        b.iter(|| {
+            next = (next + 37) % marbles.len();
+            world.wake(marbles[next]).expect("a marble");
+            world.step(1.0 / 60.0).expect("valid dt").asleep
         })
     });
     group.finish();

@@ -302,6 +302,10 @@ pub struct World {
     dormant: Dormant,
     /// Which bodies the step takes (a buffer for the deepest overlap of those it leaves out).
     taken: Vec<bool>,
+    /// Buffers of body indices: the fixed bodies, and the bodies of the islands whose deepest
+    /// overlap is worked out.
+    fixed_indices: Vec<u32>,
+    scratch_indices: Vec<u32>,
     /// The bodies the last step took, if it left any out or was quiet (see
     /// [`World::last_step_bodies`]).
     last_step: Vec<BodyId>,
@@ -652,26 +656,13 @@ impl World {
                         }
                         if !dormant.deepest_known() {
                             // Each island's deepest overlap with a sphere asleep or fixed,
-                            // once for as long as the same bodies sleep.
-                            self.solver.pairs_near(
+                            // once for as long as it sleeps.
+                            work_out_deepest(
+                                dormant,
+                                &mut self.solver,
                                 bodies,
-                                |_| 0.0,
-                                |i, j| {
-                                    let (a, b) = (&bodies[i], &bodies[j]);
-                                    let still = |x: &Body| x.asleep || x.is_fixed();
-                                    if !(a.asleep || b.asleep) || !still(a) || !still(b) {
-                                        return;
-                                    }
-                                    let overlap = a.radius() + b.radius()
-                                        - (b.position() - a.position()).length();
-                                    for (k, body) in [(i, a), (j, b)] {
-                                        if body.asleep {
-                                            dormant.raise_deepest(k, overlap);
-                                        }
-                                    }
-                                },
+                                (&mut self.fixed_indices, &mut self.scratch_indices),
                             );
-                            dormant.set_deepest_known();
                         }
                         let deepest = dormant.deepest_left_out();
                         let potential = bodies
@@ -842,4 +833,71 @@ fn label(name: Option<&str>, id: BodyId) -> String {
 /// Potential energy of dynamic `body` in the settings' gravity and its constant force.
 fn potential_of(body: &Body, settings: &Settings) -> f64 {
     -(body.mass() * settings.gravity + body.force()).dot(body.position())
+}
+
+/// Works out the deepest overlap of each island asleep whose deepest overlap is not known
+/// (see [`Dormant::deepest_known`]): its pairs among themselves and with the fixed bodies one
+/// by one when they are few (an island or two fell asleep), else every pair of the world
+/// through the broad phase. Debug builds check the first against the second.
+fn work_out_deepest(
+    dormant: &mut crate::dormant::Dormant,
+    solver: &mut Solver,
+    bodies: &[Body],
+    scratch: (&mut Vec<u32>, &mut Vec<u32>),
+) {
+    let overlap =
+        |a: &Body, b: &Body| a.radius() + b.radius() - (b.position() - a.position()).length();
+    let (fixed, unknown) = scratch;
+    fixed.clear();
+    fixed.extend((0..bodies.len() as u32).filter(|&i| bodies[i as usize].is_fixed()));
+    if dormant.unknown_if_few(fixed.len(), 8 * bodies.len() + 1024, unknown) {
+        for (k, &i) in unknown.iter().enumerate() {
+            let a = &bodies[i as usize];
+            // (An island's bodies come one after another.)
+            for &j in &unknown[k + 1..] {
+                if !dormant.same_island(i as usize, j as usize) {
+                    break;
+                }
+                dormant.raise_deepest(i as usize, overlap(a, &bodies[j as usize]));
+            }
+            for &j in fixed.iter() {
+                dormant.raise_deepest(i as usize, overlap(a, &bodies[j as usize]));
+            }
+        }
+        #[cfg(debug_assertions)]
+        {
+            let found = dormant.deepest_each();
+            dormant.forget_deepest();
+            every_pair_deepest(dormant, solver, bodies);
+            assert_eq!(
+                found,
+                dormant.deepest_each(),
+                "the islands' deepest overlaps pair by pair differ from the broad phase's"
+            );
+        }
+    } else {
+        every_pair_deepest(dormant, solver, bodies);
+    }
+    dormant.set_deepest_known();
+}
+
+/// [`work_out_deepest`] through every pair of the world near each other.
+fn every_pair_deepest(dormant: &mut crate::dormant::Dormant, solver: &mut Solver, bodies: &[Body]) {
+    solver.pairs_near(
+        bodies,
+        |_| 0.0,
+        |i, j| {
+            let (a, b) = (&bodies[i], &bodies[j]);
+            let still = |x: &Body| x.asleep || x.is_fixed();
+            if !(a.asleep || b.asleep) || !still(a) || !still(b) {
+                return;
+            }
+            let overlap = a.radius() + b.radius() - (b.position() - a.position()).length();
+            for (k, body) in [(i, a), (j, b)] {
+                if body.asleep {
+                    dormant.raise_deepest(k, overlap);
+                }
+            }
+        },
+    );
 }

@@ -385,3 +385,78 @@ fn a_ball_rolling_among_marbles_asleep_apart_keeps_the_statistics_exact() {
     );
     assert!(struck > 0, "the ball strikes marbles");
 }
+
+/// Marbles asleep apart on a floor, each its own island; one at a time is moved elsewhere on
+/// the floor (which wakes it), or taken out of the world, and each moved one, asleep again
+/// where it now lies, is struck there by a ball fired at it from 0.4 m, in one step: the index of the
+/// bodies asleep follows them as islands wake, fall asleep again and go (since the
+/// fifty-eighth session it is brought up to date, where it was made anew at every change),
+/// and every step's statistics stay the bodies' own.
+#[test]
+fn marbles_moved_asleep_elsewhere_are_struck_where_they_now_lie() {
+    let (mut world, _) = common::sleeping_on_a_floor(1e4);
+    let mut marbles = Vec::new();
+    for i in 0..10 {
+        for j in 0..10 {
+            let at = DVec3::new(f64::from(i) * 0.5, 0.1, f64::from(j) * 0.5);
+            let id = world
+                .add_sphere(SphereDesc::new(0.1).at(at).with_restitution(0.5))
+                .unwrap();
+            marbles.push(id);
+        }
+    }
+    let mut step = 0;
+    let mut step_checked = |world: &mut World| {
+        let stats = *world.step(DT).unwrap();
+        check_stats(world, &stats, &format!("step {step}"));
+        step += 1;
+    };
+    let all_asleep = |world: &World| world.bodies().iter().all(|b| b.is_fixed() || b.is_asleep());
+    for _ in 0..600 {
+        step_checked(&mut world);
+        if all_asleep(&world) {
+            break;
+        }
+    }
+    assert!(all_asleep(&world), "the marbles fall asleep");
+    for round in 0..6 {
+        // Taken out: the bodies after it move down one place in the world.
+        world.remove_body(marbles.remove(round * 7)).unwrap();
+        let moved = marbles[round * 11 + 5];
+        let to = DVec3::new(-1.0 - f64::from(round as u32) * 0.5, 0.1, 6.0);
+        world.set_position(moved, to).unwrap();
+        for _ in 0..600 {
+            step_checked(&mut world);
+            if all_asleep(&world) {
+                break;
+            }
+        }
+        assert!(all_asleep(&world), "round {round}: the marble falls asleep");
+        let lies = world.body(moved).unwrap().position();
+        assert!(
+            (lies - to).length() < 0.01,
+            "round {round}: it lies at {lies}"
+        );
+        let ball = world
+            .add_sphere(
+                SphereDesc::new(0.05)
+                    .at(lies + DVec3::new(0.01, 0.4, 0.0))
+                    .moving(DVec3::new(0.0, -20.0, 0.0)),
+            )
+            .unwrap();
+        step_checked(&mut world);
+        assert!(
+            world
+                .collisions()
+                .iter()
+                .any(|c| (c.a, c.b) == (moved, ball) || (c.a, c.b) == (ball, moved)),
+            "round {round}: the ball strikes the marble in the step it reaches it"
+        );
+        // The ball and the marble it knocked away (alone, off the grid) go.
+        world.remove_body(ball).unwrap();
+        world.remove_body(moved).unwrap();
+        marbles.retain(|&id| id != moved);
+        step_checked(&mut world);
+        assert!(all_asleep(&world), "round {round}: the others sleep on");
+    }
+}

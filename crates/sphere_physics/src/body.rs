@@ -305,7 +305,15 @@ impl SphereDesc {
 /// The mass of a sphere of `density` and `radius` (one formula for validation and bodies).
 fn mass_of(density: f64, radius: f64) -> f64 {
     // r·r·r, not powi: its precision is the platform's to choose.
-    density * 4.0 / 3.0 * PI * (radius * radius * radius)
+    let mass = density * 4.0 / 3.0 * PI * (radius * radius * radius);
+    if mass.is_normal() {
+        return mass;
+    }
+    // A huge density and a tiny radius (or the reverse) overflow (or underflow) the product
+    // in that order though the mass is in range (a radius of 1e-100 at a density of 5e307
+    // weighs 2e8 kg): the radius taken in one factor at a time. (Only here, so that every
+    // mass the order above gives stays the same to the bit.)
+    density * radius * radius * radius * (4.0 / 3.0 * PI)
 }
 
 /// Which field of a body an error is about.

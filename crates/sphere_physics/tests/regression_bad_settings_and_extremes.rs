@@ -96,6 +96,25 @@ fn regression_a_mass_that_overflows_is_refused() {
         .unwrap();
 }
 
+/// A mass in range from a density and a radius whose product in the usual order overflows or
+/// underflows (found by review in the fifty-seventh session: a radius of 1e-100 at a density
+/// of 5e307, 2.1e8 kg, was refused as a mass above 1e200 kg).
+#[test]
+fn regression_a_mass_in_range_from_extreme_factors_is_kept() {
+    let mut world = World::new(Settings::default());
+    for (radius, density) in [(1e-100, 5e307), (1e120, 1e-300)] {
+        let id = world
+            .add_sphere(SphereDesc::new(radius).with_density(density))
+            .unwrap();
+        let expected = 4.0 / 3.0 * std::f64::consts::PI * (density * radius * radius * radius);
+        let mass = world.body(id).unwrap().mass();
+        assert!(
+            (mass - expected).abs() <= 1e-14 * expected,
+            "radius {radius}, density {density}: {mass} kg, not {expected}"
+        );
+    }
+}
+
 #[test]
 fn regression_a_huge_box_of_tiny_spheres_does_not_overflow() {
     let shower = |min: [f64; 3], max: [f64; 3], radius: f64| Generator::Shower {

@@ -112,6 +112,8 @@ pub(crate) struct Dormant {
     box_of: Vec<u32>,
     /// Whether every island's `deepest` is worked out.
     all_known: bool,
+    /// Whether a body indexed was removed since the index was brought up to date.
+    stale: bool,
     /// The island each body is indexed under (0: none), by world index.
     indexed: Vec<u64>,
     /// Buffers of [`Dormant::index_asleep`]: which bodies' entries stay, the entries new to the
@@ -295,7 +297,10 @@ impl Dormant {
                 *i -= 1;
             }
         }
-        // Its own entries go (its island, woken, is indexed again before the next choice).
+        // Its own entries go (its island, woken, is indexed again before the next choice,
+        // which must not find the index unchanged: an island of that body alone would keep
+        // its box).
+        self.stale |= self.indexed.get(index).is_some_and(|&island| island != 0);
         self.by_x.retain(|e| e.1 as usize != index);
         self.by_island.retain(|e| e.1 as usize != index);
         for (_, i) in self.by_x.iter_mut() {
@@ -340,7 +345,7 @@ impl Dormant {
         self.stays.clear();
         self.stays.resize(n, false);
         self.fresh.clear();
-        let mut gone = false;
+        let mut gone = std::mem::take(&mut self.stale);
         for (i, (body, state)) in bodies.iter().zip(states).enumerate() {
             let was = self.indexed[i];
             if !body.asleep || body.is_fixed() {

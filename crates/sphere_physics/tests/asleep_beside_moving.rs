@@ -460,3 +460,59 @@ fn marbles_moved_asleep_elsewhere_are_struck_where_they_now_lie() {
         assert!(all_asleep(&world), "round {round}: the others sleep on");
     }
 }
+
+/// A sphere asleep alone, taken out of the world while other bodies move: the next steps'
+/// deepest overlap is no longer its (found by review in the fifty-eighth session: with the
+/// index of the bodies asleep brought up to date rather than made anew, the island of the
+/// body removed kept its box, and with it the body's overlap with its floor).
+#[test]
+fn regression_a_sphere_removed_asleep_leaves_the_deepest_overlap() {
+    // Marbles resting on the top of a floor of radius 100, each touching it (to the bit).
+    let (mut world, _) = common::sleeping_on_a_floor(100.0);
+    for i in 0..10 {
+        for j in 0..10 {
+            let (x, z) = (f64::from(i) * 0.1 - 0.45, f64::from(j) * 0.1 - 0.45);
+            let y = (100.01f64.powi(2) - x * x - z * z).sqrt() - 100.0;
+            world
+                .add_sphere(SphereDesc::new(0.01).at(DVec3::new(x, y, z)))
+                .unwrap();
+        }
+    }
+    // One alone on a floor of radius 1e4 far away, which it ends up resting in by that
+    // radius's rounding, 1.8e-12 m.
+    world
+        .add_sphere(
+            SphereDesc::new(1e4)
+                .at(DVec3::new(5000.0, -1e4, 0.0))
+                .fixed(),
+        )
+        .unwrap();
+    let alone = world
+        .add_sphere(SphereDesc::new(0.01).at(DVec3::new(5000.5, 0.01, 0.7)))
+        .unwrap();
+    for _ in 0..600 {
+        world.step(DT).unwrap();
+        if world.stats().asleep == 101 {
+            break;
+        }
+    }
+    assert_eq!(world.stats().asleep, 101, "everything falls asleep");
+    let deepest = world.max_overlap();
+    assert!(deepest > 0.0, "the lone sphere rests in its floor");
+    // A ball bouncing far from both, so that steps leave the bodies asleep out; one such
+    // step (which works out the islands' deepest overlaps), then the lone sphere goes.
+    add_bouncer(&mut world);
+    let stats = *world.step(DT).unwrap();
+    check_stats(&mut world, &stats, "before the removal");
+    assert_eq!(stats.max_overlap, deepest);
+    world.remove_body(alone).unwrap();
+    assert_eq!(world.max_overlap(), 0.0);
+    for step in 0..10 {
+        let stats = *world.step(DT).unwrap();
+        assert!(
+            world.last_step_bodies().is_some(),
+            "step {step} leaves bodies out"
+        );
+        check_stats(&mut world, &stats, &format!("step {step}"));
+    }
+}

@@ -516,3 +516,106 @@ fn regression_a_sphere_removed_asleep_leaves_the_deepest_overlap() {
         check_stats(&mut world, &stats, &format!("step {step}"));
     }
 }
+
+/// An edit of a world asleep, for [`islands_asleep_edited_at_random`].
+#[derive(Clone, Debug)]
+enum Edit {
+    /// Wake the `k`-th dynamic body (modulo their count).
+    Wake(usize),
+    /// Remove it.
+    Remove(usize),
+    /// Move it to the floor's top at (x, z).
+    Move(usize, f64, f64),
+    /// Add a marble at rest on the floor's top at (x, z).
+    Add(f64, f64),
+    /// Take this many steps.
+    Steps(u32),
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    prop_oneof![
+        (0usize..1000).prop_map(Edit::Wake),
+        (0usize..1000).prop_map(Edit::Remove),
+        (0usize..1000, -2.0f64..2.0, -2.0f64..2.0).prop_map(|(k, x, z)| Edit::Move(k, x, z)),
+        (-2.0f64..2.0, -2.0f64..2.0).prop_map(|(x, z)| Edit::Add(x, z)),
+        (1u32..90).prop_map(Edit::Steps),
+    ]
+}
+
+/// Where a marble of radius 0.05 rests on the top of the floor of radius 1e4 at (x, z).
+fn on_floor(x: f64, z: f64) -> DVec3 {
+    DVec3::new(x, (10_000.05f64.powi(2) - x * x - z * z).sqrt() - 1e4, z)
+}
+
+proptest! {
+    #![proptest_config(common::proptest_config(6, common::SEED))]
+
+    /// Marbles asleep on a floor in islands of one to three, a ball bouncing above them (so
+    /// that steps leave the islands asleep out), and random edits: marbles woken, removed,
+    /// moved and added, and steps between them, through which islands wake and fall asleep
+    /// again. Every step's statistics stay the bodies' own (the index of the bodies asleep,
+    /// brought up to date since the fifty-eighth session, must follow every change; debug
+    /// builds also check each island's deepest overlap against the broad phase's). In the
+    /// seven cases of the fixed seed, 807 of the 840 steps left islands out. Checked to fail
+    /// with a body removed keeping its entries in the index, or with a lone marble falling
+    /// asleep left out of it.
+    #[test]
+    fn islands_asleep_edited_at_random(
+        groups in proptest::collection::vec((-2.0f64..2.0, -2.0f64..2.0, 1usize..4), 40..70),
+        edits in proptest::collection::vec(edit(), 5..25),
+    ) {
+        let (mut world, _) = common::sleeping_on_a_floor(1e4);
+        for &(x, z, size) in &groups {
+            for k in 0..size {
+                // Side by side along x, touching: one island.
+                let at = on_floor(x + 0.1 * k as f64, z);
+                let taken = |b: &sphere_physics::Body| {
+                    !b.is_fixed() && (b.position() - at).length() < 0.1
+                };
+                if world.bodies().iter().any(taken) {
+                    continue;
+                }
+                world.add_sphere(SphereDesc::new(0.05).at(at).with_restitution(0.5)).unwrap();
+            }
+        }
+        let dynamic = |world: &World| world.bodies().iter().filter(|b| !b.is_fixed()).count();
+        for _ in 0..300 {
+            world.step(DT).unwrap();
+        }
+        add_bouncer(&mut world);
+        let (mut step, mut left_out) = (0, 0);
+        for edit in &edits {
+            let ids: Vec<BodyId> = world
+                .bodies()
+                .iter()
+                .filter(|b| !b.is_fixed() && b.position().y < 3.0)
+                .map(|b| b.id())
+                .collect();
+            match *edit {
+                Edit::Wake(k) if !ids.is_empty() => world.wake(ids[k % ids.len()]).unwrap(),
+                Edit::Remove(k) if !ids.is_empty() => {
+                    world.remove_body(ids[k % ids.len()]).unwrap();
+                }
+                Edit::Move(k, x, z) if !ids.is_empty() => {
+                    world.set_position(ids[k % ids.len()], on_floor(x, z)).unwrap();
+                }
+                Edit::Add(x, z) => {
+                    world.add_sphere(SphereDesc::new(0.05).at(on_floor(x, z))).unwrap();
+                }
+                Edit::Steps(n) => {
+                    for _ in 0..n {
+                        let before = states(&world);
+                        let stats = *world.step(DT).unwrap();
+                        check_stats(&mut world, &stats, &format!("step {step}"));
+                        check_unlisted_still(&world, &before, &format!("step {step}"));
+                        step += 1;
+                        left_out += u32::from(world.last_step_bodies().is_some());
+                    }
+                }
+                _ => {}
+            }
+        }
+        prop_assert!(left_out <= step);
+        prop_assert!(dynamic(&world) > 0);
+    }
+}

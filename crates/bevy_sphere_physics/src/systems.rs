@@ -324,12 +324,8 @@ pub(crate) fn prepare(
     }
     // Disabled spheres (Bevy's `Disabled`: hidden from every other query) leave the
     // simulation, and join it again from where they were when enabled.
-    for entity in &disabled {
-        if let Some(id) = physics.bodies.remove(&entity) {
-            physics.world.remove_body(id);
-            physics.entities.remove(&id);
-        }
-    }
+    let mut leaving: Vec<Entity> = disabled.iter().collect();
+    remove_bodies(physics, &mut leaving);
     let mut reject = |commands: &mut Commands, entity: Entity, desc: SphereDesc, error| {
         warn!("sphere {entity} left out of the simulation: {error}");
         rejected.write(SphereRejected {
@@ -684,18 +680,20 @@ pub(crate) fn writeback(
 }
 
 /// Takes the bodies of `entities` (spheres despawned, or that lost their `SphereBody`) out of
-/// the world, if they are still in it. The last body first: removing a body moves every body
-/// after it down one place, so thousands despawned together (a level left, in the order they
-/// were spawned) moved the rest once each, in quadratic time (10 000: 314 ms against 18);
-/// from the last, nothing is moved. The world ends the same in any order.
+/// the world, if they are still in it, all at once (`World::remove_bodies`): removing a body
+/// moves every body after it down one place, so thousands despawned together (a level left,
+/// in the order they were spawned) moved the rest once each, in quadratic time (10 000: 314
+/// ms); from the last body first, until the fifty-eighth session, 18 ms, but 0.2 to 0.3 s
+/// for 40 000; at once, 1 to 6 ms. The world ends the same in any order.
 fn remove_bodies(physics: &mut SpherePhysicsWorld, entities: &mut [Entity]) {
-    entities.sort_unstable_by_key(|entity| std::cmp::Reverse(physics.bodies.get(entity).copied()));
-    for entity in entities.iter() {
-        if let Some(id) = physics.bodies.remove(entity) {
-            physics.world.remove_body(id);
-            physics.entities.remove(&id);
-        }
+    let ids: Vec<BodyId> = entities
+        .iter()
+        .filter_map(|entity| physics.bodies.remove(entity))
+        .collect();
+    for id in &ids {
+        physics.entities.remove(id);
     }
+    physics.world.remove_bodies(&ids);
 }
 
 /// Whether a sphere's position was changed `late` by the game (see `writeback`), from the

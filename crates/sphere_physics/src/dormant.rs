@@ -297,9 +297,7 @@ impl Dormant {
                 *i -= 1;
             }
         }
-        // Its own entries go (its island, woken, is indexed again before the next choice,
-        // which must not find the index unchanged: an island of that body alone would keep
-        // its box).
+        // Its own entries go (see `removed_all`).
         self.stale |= self.indexed.get(index).is_some_and(|&island| island != 0);
         self.by_x.retain(|e| e.1 as usize != index);
         self.by_island.retain(|e| e.1 as usize != index);
@@ -319,6 +317,44 @@ impl Dormant {
         if index < self.indexed.len() {
             self.indexed.remove(index);
         }
+    }
+
+    /// The bodies at the world indices `gone` marks were removed: those after each move down.
+    /// An index kept up to date then must be brought up to date before the next choice,
+    /// which must not find it unchanged: an island of a removed body alone would keep its
+    /// box (found by review in the fifty-eighth session).
+    pub fn removed_all(&mut self, gone: &[bool]) {
+        // Each old index's new one: the old less the bodies removed before it.
+        let mut below = 0u32;
+        let new_index: Vec<u32> = gone
+            .iter()
+            .map(|&g| {
+                let at = below;
+                below += u32::from(!g);
+                at
+            })
+            .collect();
+        let stays = |i: u32| !gone[i as usize];
+        self.awake.retain(|&i| stays(i));
+        for i in &mut self.awake {
+            *i = new_index[*i as usize];
+        }
+        self.by_x.retain(|e| stays(e.1));
+        for e in &mut self.by_x {
+            e.1 = new_index[e.1 as usize];
+        }
+        self.by_island.retain(|e| stays(e.1));
+        for e in &mut self.by_island {
+            e.1 = new_index[e.1 as usize];
+        }
+        self.stale |= self
+            .indexed
+            .iter()
+            .zip(gone)
+            .any(|(&island, &g)| g && island != 0);
+        // (Both as long as the world when the index was last brought up to date.)
+        retain_by_index(&mut self.box_of, gone);
+        retain_by_index(&mut self.indexed, gone);
     }
 
     /// A body was added, at world index `index` (the last): awake.
@@ -624,4 +660,13 @@ fn merge<T: Copy>(
     scratch.extend_from_slice(&list[i..]);
     scratch.extend_from_slice(&extra[j..]);
     std::mem::swap(list, scratch);
+}
+
+/// Keeps the entries of `list` (by world index) whose bodies `gone` does not mark.
+fn retain_by_index<T>(list: &mut Vec<T>, gone: &[bool]) {
+    let mut k = 0;
+    list.retain(|_| {
+        k += 1;
+        !gone.get(k - 1).copied().unwrap_or(false)
+    });
 }

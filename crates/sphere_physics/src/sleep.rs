@@ -120,6 +120,15 @@ impl Sleeper {
         self.states.remove(index);
     }
 
+    /// The bodies at the indices `gone` marks were removed: those after each move down.
+    pub fn removed_all(&mut self, gone: &[bool]) {
+        let mut k = 0;
+        self.states.retain(|_| {
+            k += 1;
+            !gone[k - 1]
+        });
+    }
+
     /// The body at `index` was replaced by a new one, or given a calm it must gather anew (it
     /// was changed, and may be where it would never have come to rest).
     pub fn reset(&mut self, index: usize) {
@@ -311,10 +320,21 @@ impl Sleeper {
 
     /// Wakes the island of `body`, if it is asleep.
     pub fn wake_island_of(&mut self, bodies: &mut [Body], index: usize) {
+        self.mark_to_wake(bodies, index);
+        self.wake_now(bodies);
+    }
+
+    /// Marks the island of the body at `index`, if it is asleep, to be woken by
+    /// [`Sleeper::wake_now`].
+    pub fn mark_to_wake(&mut self, bodies: &[Body], index: usize) {
         if bodies[index].asleep {
             self.wake.push(self.states[index].island);
-            self.wake_islands(bodies);
         }
+    }
+
+    /// Wakes the islands marked by [`Sleeper::mark_to_wake`].
+    pub fn wake_now(&mut self, bodies: &mut [Body]) {
+        self.wake_islands(bodies);
     }
 
     /// Wakes the islands of the sleeping bodies touching (see [`SLEEP_CONTACT`]) a sphere of

@@ -308,7 +308,7 @@ pub(crate) fn prepare(
         | (physics.world.stats().asleep == 0);
     let physics = physics.bypass_change_detection();
     rejected.write_batch(runaways.0.drain(..));
-    remove_bodies(physics, &mut removed.0);
+    remove_bodies(physics, removed.0.iter().copied());
     for entity in removed.0.drain(..) {
         if spheres.contains(entity) {
             // Its `SphereBody` was inserted again since: a new sphere from its components,
@@ -324,8 +324,7 @@ pub(crate) fn prepare(
     }
     // Disabled spheres (Bevy's `Disabled`: hidden from every other query) leave the
     // simulation, and join it again from where they were when enabled.
-    let mut leaving: Vec<Entity> = disabled.iter().collect();
-    remove_bodies(physics, &mut leaving);
+    remove_bodies(physics, disabled);
     let mut reject = |commands: &mut Commands, entity: Entity, desc: SphereDesc, error| {
         warn!("sphere {entity} left out of the simulation: {error}");
         rejected.write(SphereRejected {
@@ -500,7 +499,7 @@ pub(crate) fn step(
     mut runaways: ResMut<RunawaySpheres>,
     mut last_refusal: Local<Option<String>>,
     time: Res<Time<Fixed>>,
-    mut removed: ResMut<RemovedSpheres>,
+    removed: ResMut<RemovedSpheres>,
 ) {
     stepped.0 = clock.take_step();
     if !stepped.0 {
@@ -513,7 +512,7 @@ pub(crate) fn step(
     // one, are out of this step already (until the fifty-sixth session they still collided in
     // it, and the collision went unreported). `Prepare` does the rest for them, as for any
     // sphere removed.
-    remove_bodies(physics, &mut removed.0);
+    remove_bodies(physics, removed.0.iter().copied());
     // Each retry leaves one sphere out, so this ends; the bound only caps one step's work.
     let mut result = physics.world.step(time.delta_secs_f64()).copied();
     for _ in 0..64 {
@@ -685,10 +684,11 @@ pub(crate) fn writeback(
 /// in the order they were spawned) moved the rest once each, in quadratic time (10 000: 314
 /// ms); from the last body first, until the fifty-eighth session, 18 ms, but 0.2 to 0.3 s
 /// for 40 000; at once, 1 to 6 ms. The world ends the same in any order.
-fn remove_bodies(physics: &mut SpherePhysicsWorld, entities: &mut [Entity]) {
+fn remove_bodies(physics: &mut SpherePhysicsWorld, entities: impl IntoIterator<Item = Entity>) {
+    // (No allocation unless a body is to go.)
     let ids: Vec<BodyId> = entities
-        .iter()
-        .filter_map(|entity| physics.bodies.remove(entity))
+        .into_iter()
+        .filter_map(|entity| physics.bodies.remove(&entity))
         .collect();
     for id in &ids {
         physics.entities.remove(id);

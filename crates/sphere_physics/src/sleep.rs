@@ -36,6 +36,9 @@ impl Default for Sleep {
     }
 }
 
+/// How many fixed bodies removed together [`Sleeper::wake_around_all`] looks at one by one.
+const FEW_FIXED: usize = 8;
+
 /// A body's flags while groups are formed.
 const GROUNDED: u8 = 1;
 const BLOCKED: u8 = 2;
@@ -355,6 +358,59 @@ impl Sleeper {
                 }
             }
         }
+        self.wake_islands(bodies);
+    }
+
+    /// [`Sleeper::wake_around`] for each fixed body `gone` marks (removed together, with the
+    /// other bodies it marks). Past [`FEW_FIXED`] of them, each one's neighbours are found
+    /// through the broad phase instead of every body being looked at for each (a level of
+    /// 40 000 fixed spheres cleared at once would have looked at 1.6e9 pairs).
+    pub fn wake_around_all(
+        &mut self,
+        bodies: &mut [Body],
+        solver: &mut Solver,
+        gone: &[bool],
+        sleeping: bool,
+    ) {
+        let fixed = |i: &usize| gone[*i] && bodies[*i].is_fixed();
+        if (0..bodies.len()).filter(fixed).nth(FEW_FIXED).is_none() {
+            let few: Vec<usize> = (0..bodies.len()).filter(fixed).collect();
+            for i in few {
+                let (centre, radius) = (bodies[i].position(), bodies[i].radius());
+                self.wake_around(bodies, centre, radius, sleeping);
+            }
+            return;
+        }
+        if self.asleep == 0 && !sleeping {
+            return;
+        }
+        let view: &[Body] = bodies;
+        let (states, wake) = (&mut self.states, &mut self.wake);
+        solver.pairs_near(
+            view,
+            |b| {
+                if b.is_fixed() {
+                    0.0
+                } else {
+                    SLEEP_CONTACT * b.radius()
+                }
+            },
+            |i, j| {
+                for (f, d) in [(i, j), (j, i)] {
+                    let (by, body) = (&view[f], &view[d]);
+                    if gone[f]
+                        && by.is_fixed()
+                        && gap(body, by.position(), by.radius()) <= SLEEP_CONTACT * body.radius()
+                    {
+                        if body.asleep {
+                            wake.push(states[d].island);
+                        } else {
+                            states[d].calm = 0.0;
+                        }
+                    }
+                }
+            },
+        );
         self.wake_islands(bodies);
     }
 

@@ -400,16 +400,13 @@ impl World {
         self.sleeper.disturbed();
         let sleeping = self.settings.sleep.is_some();
         for index in (0..gone.len()).filter(|&i| gone[i]) {
-            let body = &self.bodies[index];
-            if body.is_fixed() {
-                let (centre, radius) = (body.position(), body.radius());
-                self.sleeper
-                    .wake_around(&mut self.bodies, centre, radius, sleeping);
-            } else {
+            if !self.bodies[index].is_fixed() {
                 self.sleeper.mark_to_wake(&self.bodies, index);
             }
         }
         self.sleeper.wake_now(&mut self.bodies);
+        self.sleeper
+            .wake_around_all(&mut self.bodies, &mut self.solver, &gone, sleeping);
         // The bodies after each move down.
         self.dormant.removed_all(&gone);
         self.sleeper.removed_all(&gone);

@@ -23,13 +23,16 @@ fn marbles(count: usize, settle: u32) -> (World, BodyId) {
                 .unwrap();
         }
     }
-    // A fixed stand among them, with a marble on it.
-    world
-        .add_sphere(SphereDesc::new(0.1).at(DVec3::new(1.05, 0.0, 1.05)).fixed())
-        .unwrap();
-    world
-        .add_sphere(SphereDesc::new(0.05).at(DVec3::new(1.05, 0.15, 1.05)))
-        .unwrap();
+    // Fixed stands beside them in a row, each with a marble on it.
+    for k in 0..12 {
+        let at = DVec3::new(-0.5, 0.0, 0.3 * f64::from(k));
+        world
+            .add_sphere(SphereDesc::new(0.1).at(at).fixed())
+            .unwrap();
+        world
+            .add_sphere(SphereDesc::new(0.05).at(at + DVec3::Y * 0.15))
+            .unwrap();
+    }
     for _ in 0..settle {
         world.step(DT).unwrap();
     }
@@ -46,26 +49,38 @@ fn state(world: &World) -> String {
 }
 
 proptest! {
-    #![proptest_config(common::proptest_config(16, common::SEED))]
+    #![proptest_config(common::proptest_config(24, common::SEED))]
 
-    /// Any bodies (fixed ones, the floor, bodies asleep and awake, ids of no body and ids
-    /// given twice among them) removed at once leave the same world as removed one by one in
-    /// any order, and its steps after are the same, bit for bit.
+    /// Any bodies (fixed ones, the floor, stands with the marbles on them, bodies asleep
+    /// and awake, ids of no body and ids given twice among them) removed at once leave the
+    /// same world as removed one by one in any order, return the same bodies, and the steps
+    /// after are the same, bit for bit.
     #[test]
     fn removing_at_once_is_removing_one_by_one(
-        count in 8usize..80,
-        settle in 0u32..200,
-        picks in proptest::collection::vec(0usize..200, 0..40),
-        order in proptest::collection::vec(any::<u32>(), 40),
+        count in 40usize..80,
+        settle in prop_oneof![0u32..10, 100u32..200],
+        picks in proptest::collection::vec(0usize..130, 0..60),
+        stands in any::<bool>(),
+        order in proptest::collection::vec(any::<u32>(), 80),
     ) {
         let (mut at_once, ghost) = marbles(count, settle);
         let (mut one_by_one, _) = marbles(count, settle);
         prop_assert_eq!(state(&at_once), state(&one_by_one));
-        // Picks past the last body are the id of no body.
-        let ids: Vec<BodyId> = picks
+        // Picks past the last body are the id of no body; and, in half the cases, every
+        // stand (more than the few whose neighbours are looked for one by one).
+        let mut ids: Vec<BodyId> = picks
             .iter()
             .map(|&k| at_once.bodies().get(k).map_or(ghost, |b| b.id()))
             .collect();
+        if stands {
+            ids.extend(
+                at_once
+                    .bodies()
+                    .iter()
+                    .filter(|b| b.is_fixed() && b.radius() < 1.0)
+                    .map(|b| b.id()),
+            );
+        }
         let removed = at_once.remove_bodies(&ids);
         let mut expected: Vec<BodyId> = ids.iter().copied().filter(|&id| id != ghost).collect();
         expected.sort_unstable();
@@ -77,9 +92,10 @@ proptest! {
             let j = k + r as usize % (shuffled.len() - k);
             shuffled.swap(k, j);
         }
-        for id in shuffled {
-            one_by_one.remove_body(id);
-        }
+        let mut one_by_one_removed: Vec<_> =
+            shuffled.into_iter().filter_map(|id| one_by_one.remove_body(id)).collect();
+        one_by_one_removed.sort_by_key(|b| b.id());
+        prop_assert_eq!(format!("{removed:?}"), format!("{one_by_one_removed:?}"));
         prop_assert_eq!(state(&at_once), state(&one_by_one));
         for step in 0..90 {
             at_once.step(DT).unwrap();

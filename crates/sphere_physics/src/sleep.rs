@@ -36,6 +36,16 @@ impl Default for Sleep {
     }
 }
 
+/// A body touching a fixed sphere added, changed or removed (see [`Sleeper::wake_around`]):
+/// asleep, its island is to wake; awake, it is calm from now on only.
+fn disturbed_by_fixed(body: &Body, state: &mut SleepState, wake: &mut Vec<u64>) {
+    if body.asleep {
+        wake.push(state.island);
+    } else {
+        state.calm = 0.0;
+    }
+}
+
 /// How many fixed bodies removed together [`Sleeper::wake_around_all`] looks at one by one.
 const FEW_FIXED: usize = 8;
 
@@ -351,11 +361,7 @@ impl Sleeper {
         }
         for (body, state) in bodies.iter().zip(&mut self.states) {
             if gap(body, centre, radius) <= SLEEP_CONTACT * body.radius() {
-                if body.asleep {
-                    self.wake.push(state.island);
-                } else {
-                    state.calm = 0.0;
-                }
+                disturbed_by_fixed(body, state, &mut self.wake);
             }
         }
         self.wake_islands(bodies);
@@ -402,11 +408,7 @@ impl Sleeper {
                         && by.is_fixed()
                         && gap(body, by.position(), by.radius()) <= SLEEP_CONTACT * body.radius()
                     {
-                        if body.asleep {
-                            wake.push(states[d].island);
-                        } else {
-                            states[d].calm = 0.0;
-                        }
+                        disturbed_by_fixed(body, &mut states[d], wake);
                     }
                 }
             },

@@ -1958,7 +1958,7 @@ fn pressing(a: &Extra, b: &Extra, normal: DVec3) -> f64 {
 }
 
 /// How far two bodies overlap (negative when apart).
-fn overlap(a: &Body, b: &Body) -> f64 {
+pub(crate) fn overlap(a: &Body, b: &Body) -> f64 {
     a.radius() + b.radius() - (b.position() - a.position()).length()
 }
 

@@ -7,7 +7,7 @@ use crate::body::Field;
 use crate::contact::{ContactKind, Kinematics, classify};
 use crate::dormant::Dormant;
 use crate::sleep::{Sleep, Sleeper};
-use crate::solver::{Solver, StepContext};
+use crate::solver::{Solver, StepContext, overlap};
 use crate::{
     Body, BodyError, BodyId, Collision, CombineRule, Integrator, IntegratorKind, SphereDesc,
     StepProfile, StepStats, TimeOfImpact, ToiMethod, Tolerance,
@@ -887,8 +887,6 @@ fn work_out_deepest(
     bodies: &[Body],
     scratch: (&mut Vec<u32>, &mut Vec<u32>),
 ) {
-    let overlap =
-        |a: &Body, b: &Body| a.radius() + b.radius() - (b.position() - a.position()).length();
     let (fixed, unknown) = scratch;
     fixed.clear();
     fixed.extend((0..bodies.len() as u32).filter(|&i| bodies[i as usize].is_fixed()));
@@ -934,10 +932,10 @@ fn every_pair_deepest(dormant: &mut crate::dormant::Dormant, solver: &mut Solver
             if !(a.asleep || b.asleep) || !still(a) || !still(b) {
                 return;
             }
-            let overlap = a.radius() + b.radius() - (b.position() - a.position()).length();
+            let deep = overlap(a, b);
             for (k, body) in [(i, a), (j, b)] {
                 if body.asleep {
-                    dormant.raise_deepest(k, overlap);
+                    dormant.raise_deepest(k, deep);
                 }
             }
         },

@@ -384,6 +384,9 @@ impl World {
     /// world. Removed one at a time, each moves every body after it: a level of 40 000
     /// cleared from its first body took 7.8 s, from its last 0.2 s, and at once 5 ms.
     pub fn remove_bodies(&mut self, ids: &[BodyId]) -> Vec<Body> {
+        if ids.is_empty() {
+            return Vec::new();
+        }
         let mut gone = vec![false; self.bodies.len()];
         let mut any = false;
         for &id in ids {

@@ -6,6 +6,9 @@
 //! creep speed and sinks the pair for the rest of the step. Solved together, the wedge takes
 //! its load at once.
 //!
+//! It also counts the bounces each dynamic body takes at the instant, so that an inelastic
+//! collapse there can be told (see `COLLAPSE_BOUNCES` in the solver).
+//!
 //! Contacts are kept in one list per dynamic body (a fixed body's velocity never changes, so
 //! it joins nothing), so that finding a body's contacts and everything connected to them costs
 //! what the bodies reached have recorded at this instant (contacts already gathered or
@@ -37,6 +40,14 @@ pub(crate) struct InstantContacts {
     seen: Vec<u32>,
     seen_epoch: u32,
     reached: Vec<u32>,
+    /// Each dynamic body's bounces at this instant (see [`InstantContacts::bounced`]), valid
+    /// when its epoch is `epoch`.
+    bounces: Vec<(u32, u32)>,
+    /// The most bounces any body took at this instant (each body's counted from the
+    /// instant's [`InstantContacts::COUNT_FROM`]th).
+    most_bounces: u32,
+    /// Bounces at this instant, all bodies'.
+    all_bounces: u32,
 }
 
 impl InstantContacts {
@@ -45,14 +56,18 @@ impl InstantContacts {
     pub(crate) fn start(&mut self, time: f64, bodies: usize) {
         self.time = time;
         self.links.clear();
+        self.most_bounces = 0;
+        self.all_bounces = 0;
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == 0 {
             self.heads.iter_mut().for_each(|h| *h = (0, NONE));
+            self.bounces.iter_mut().for_each(|b| *b = (0, 0));
             self.epoch = 1;
         }
         if self.heads.len() < bodies {
             self.heads.resize(bodies, (0, NONE));
             self.seen.resize(bodies, 0);
+            self.bounces.resize(bodies, (0, 0));
         }
     }
 
@@ -90,6 +105,56 @@ impl InstantContacts {
             }
         }
         self.links.push(link);
+    }
+
+    /// Counts an impact with restitution (a bounce, not a resting impact) at this instant
+    /// between bodies `a` and `b`, for each of them that `moves`. Bodies' own counts start at
+    /// the instant's [`InstantContacts::COUNT_FROM`]th bounce: most instants take one or two,
+    /// and are spared the bookkeeping.
+    #[inline(always)]
+    pub(crate) fn bounced(&mut self, a: u32, b: u32, moves: impl Fn(u32) -> bool) {
+        self.all_bounces = self.all_bounces.saturating_add(1);
+        if self.all_bounces >= Self::COUNT_FROM {
+            self.count_both(a, b, moves);
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn count_both(&mut self, a: u32, b: u32, moves: impl Fn(u32) -> bool) {
+        for k in [a, b] {
+            if moves(k) {
+                self.count(k);
+            }
+        }
+    }
+
+    /// The bounce of an instant from which each body's are counted.
+    pub(crate) const COUNT_FROM: u32 = 16;
+
+    fn count(&mut self, k: u32) {
+        let epoch = self.epoch;
+        if let Some(slot) = self.bounces.get_mut(k as usize) {
+            *slot = match *slot {
+                (e, n) if e == epoch => (epoch, n.saturating_add(1)),
+                _ => (epoch, 1),
+            };
+            self.most_bounces = self.most_bounces.max(slot.1);
+        }
+    }
+
+    /// The most bounces any body took at this instant.
+    pub(crate) fn most_bounces(&self) -> u32 {
+        self.most_bounces
+    }
+
+    /// How many bounces dynamic body `k` took at this instant, counted from the instant's
+    /// [`InstantContacts::COUNT_FROM`]th.
+    pub(crate) fn bounces(&self, k: u32) -> u32 {
+        match self.bounces.get(k as usize) {
+            Some(&(e, n)) if e == self.epoch => n,
+            _ => 0,
+        }
     }
 
     /// Whether dynamic body `k` has a contact at this instant.

@@ -224,7 +224,14 @@ fn a_ball_fired_from_afar_strikes_the_bed_in_the_step_it_reaches_it() {
 fn a_pebble_struck_towards_the_bed_strikes_it_in_the_same_step() {
     let mut world = bed_asleep(120, 3).expect("the bed falls asleep");
     let top = highest(&world);
-    // One above the other over the bed: the pebble's centre 30 cm above the highest sphere's
+    // The highest sphere of the bed (the pebble falls onto it, whatever the bed's shape).
+    let under = world
+        .bodies()
+        .iter()
+        .find(|b| !b.is_fixed() && b.position().y == top)
+        .unwrap()
+        .position();
+    // One above the other over it: the pebble's centre 30 cm above the highest sphere's
     // (23 cm between them), the heavy ball 5 mm above the pebble, falling at 10 m/s. Struck
     // within a millisecond, the pebble takes 12 ms to the bed at 20 m/s; a step is 16.7 ms.
     // Neither is near enough the bed for the speeds at the step's start (10 m/s at most) to
@@ -232,14 +239,14 @@ fn a_pebble_struck_towards_the_bed_strikes_it_in_the_same_step() {
     let pebble = world
         .add_sphere(
             SphereDesc::new(0.02)
-                .at(DVec3::new(0.0, top + 0.3, 0.0))
+                .at(DVec3::new(under.x, top + 0.3, under.z))
                 .with_density(0.01),
         )
         .unwrap();
     let heavy = world
         .add_sphere(
             SphereDesc::new(0.05)
-                .at(DVec3::new(0.0, top + 0.375, 0.0))
+                .at(DVec3::new(under.x, top + 0.375, under.z))
                 .moving(DVec3::new(0.0, -10.0, 0.0))
                 .with_density(1000.0),
         )

@@ -55,7 +55,7 @@ impl Solver {
     }
 
     /// Solves `component` (impacts at time `t`, one of whose bodies has taken its share of
-    /// collisions this step) together with every contact touching at `t` that connects to it
+    /// collisions this step, or bounced [`COLLAPSE_BOUNCES`] times at `t`) together with every contact touching at `t` that connects to it
     /// through dynamic bodies (up to about [`SQUEEZE_CONTACTS`]), all with restitution 0, into
     /// [`Solver::joined`], and touches their bodies. A light sphere squeezed between heavier
     /// ones closing on it (or against a fixed one) bounces between them faster and faster:
@@ -398,6 +398,8 @@ impl Solver {
             } else if resting {
                 self.instant
                     .record(a as u32, b as u32, moving(&self.segments));
+            } else if c.restitution > 0.0 && c.restitution < 1.0 {
+                self.count_bounce(a, b);
             }
             self.record_collision((a, b), t, c.normal, impulse, resting, ctx);
         }
@@ -512,6 +514,8 @@ impl Solver {
         } else if resting {
             self.instant
                 .record(event.a, event.b, moving(&self.segments));
+        } else if restitution > 0.0 && restitution < 1.0 {
+            self.count_bounce(a, b);
         }
         stats.collisions = stats.collisions.saturating_add(1);
         stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));

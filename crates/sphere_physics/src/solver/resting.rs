@@ -1366,6 +1366,22 @@ impl Solver {
         }
     }
 
+    /// Whether body `a` or `b` has bounced [`COLLAPSE_BOUNCES`] times at this instant, and
+    /// been squeezed for it fewer than [`SQUEEZES`] times (each squeeze counts as a bounce).
+    pub(super) fn collapsing(&self, a: usize, b: usize) -> bool {
+        let instant = &self.instant;
+        let collapsing = |k: usize| {
+            (COLLAPSE_BOUNCES..COLLAPSE_BOUNCES + SQUEEZES).contains(&instant.bounces(k as u32))
+        };
+        instant.most_bounces() >= COLLAPSE_BOUNCES && (collapsing(a) || collapsing(b))
+    }
+
+    /// Counts a bounce of pair `(a, b)` at this instant (see [`COLLAPSE_BOUNCES`]).
+    pub(super) fn count_bounce(&mut self, a: usize, b: usize) {
+        self.instant
+            .bounced(a as u32, b as u32, moving(&self.segments));
+    }
+
     /// The acceleration pressing touching pair `(i, j)` together along `normal` at the start
     /// of the step, when the resting solve picks its contacts: the larger of the two bodies'
     /// whole accelerations, unless one hangs on a string (then only along the normal, see

@@ -233,6 +233,10 @@ const SQUEEZES: u32 = 8;
 /// collapse into no limit, and a squeeze would take their energy.
 const COLLAPSE_BOUNCES: u32 = 16;
 
+/// The cosine of the widest angle a contact's normal may make with a collapse's line to join
+/// its squeeze (60°: see [`Solver::squeeze`]).
+const ALONG_COS: f64 = 0.5;
+
 /// The most contacts [`Solver::squeeze`] gathers into one solve.
 const SQUEEZE_CONTACTS: usize = 256;
 
@@ -1432,7 +1436,12 @@ impl Solver {
                     continue;
                 }
                 if squeeze {
-                    self.squeeze(component, event.time, ctx, stats);
+                    let along = (collapsing && !squeezable).then(|| {
+                        let e = &component[0];
+                        let (a, b) = (&self.segments[e.a as usize], &self.segments[e.b as usize]);
+                        (b.position_at(event.time) - a.position_at(event.time)).normalize_or_zero()
+                    });
+                    self.squeeze(component, event.time, along, ctx, stats);
                     if collapsing {
                         for e in component {
                             self.count_bounce(e.a as usize, e.b as usize);

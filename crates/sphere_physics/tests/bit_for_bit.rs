@@ -84,7 +84,7 @@ fn a_landing_ball_pit_steps_the_same_bit_for_bit() {
         fell_back > 0,
         "the pit no longer spends its collision budget"
     );
-    check("pit", got, 0x87f4_fb6a_869f_f936);
+    check("pit", got, 0x895a_9ab6_5487_068f);
 }
 
 /// 2000 spheres of radius 0.05 (restitution 0.5) raining onto a fixed dome (`sphere_bench`'s

@@ -48,6 +48,8 @@ pub(crate) struct InstantContacts {
     most_bounces: u32,
     /// Bounces at this instant, all bodies'.
     all_bounces: u32,
+    /// The fastest approach of a bounce at this instant.
+    fastest: f64,
 }
 
 impl InstantContacts {
@@ -58,6 +60,7 @@ impl InstantContacts {
         self.links.clear();
         self.most_bounces = 0;
         self.all_bounces = 0;
+        self.fastest = 0.0;
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == 0 {
             self.heads.iter_mut().for_each(|h| *h = (0, NONE));
@@ -108,11 +111,12 @@ impl InstantContacts {
     }
 
     /// Counts an impact with restitution (a bounce, not a resting impact) at this instant
-    /// between bodies `a` and `b`, for each of them that `moves`. Bodies' own counts start at
-    /// the instant's [`InstantContacts::COUNT_FROM`]th bounce: most instants take one or two,
-    /// and are spared the bookkeeping.
+    /// between bodies `a` and `b`, approaching at `speed`, for each of them that `moves`.
+    /// Bodies' own counts start at the instant's [`InstantContacts::COUNT_FROM`]th bounce:
+    /// most instants take one or two, and are spared the bookkeeping.
     #[inline(always)]
-    pub(crate) fn bounced(&mut self, a: u32, b: u32, moves: impl Fn(u32) -> bool) {
+    pub(crate) fn bounced(&mut self, a: u32, b: u32, speed: f64, moves: impl Fn(u32) -> bool) {
+        self.fastest = self.fastest.max(speed);
         self.all_bounces = self.all_bounces.saturating_add(1);
         if self.all_bounces >= Self::COUNT_FROM {
             self.count_both(a, b, moves);
@@ -141,6 +145,11 @@ impl InstantContacts {
             };
             self.most_bounces = self.most_bounces.max(slot.1);
         }
+    }
+
+    /// The fastest approach of a bounce at this instant (0 before any).
+    pub(crate) fn fastest(&self) -> f64 {
+        self.fastest
     }
 
     /// The most bounces any body took at this instant.

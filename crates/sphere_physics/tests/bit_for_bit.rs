@@ -84,7 +84,7 @@ fn a_landing_ball_pit_steps_the_same_bit_for_bit() {
         fell_back > 0,
         "the pit no longer spends its collision budget"
     );
-    check("pit", got, 0x895a_9ab6_5487_068f);
+    check("pit", got, 0xfaab_8136_fb5c_efcd);
 }
 
 /// 2000 spheres of radius 0.05 (restitution 0.5) raining onto a fixed dome (`sphere_bench`'s

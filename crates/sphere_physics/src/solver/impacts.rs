@@ -66,23 +66,28 @@ impl Solver {
     /// closing at once, as the bounces would in the limit (no push against an overlap: it only
     /// stops the contacts closing), keeping momentum.
     ///
-    /// With `along` (a collapse's squeeze, the first impact's normal), only contacts whose
-    /// normals lie within 60° of that line join the cluster: a collapse runs along the line of
-    /// its impacts (a struck row), and the contacts across it (the row's neighbours on either
-    /// side, a floor under it) would take no impulse from the solve, but fill the cluster's
-    /// room. (Taking them, a struck row of 100 in a lattice of marbles was squeezed 937 times
-    /// at one instant, each cluster about 105 marbles around one point of the row.)
+    /// With `along` (a collapse's squeeze: the first impact's normal and a speed, see
+    /// [`COLLAPSE_BOUNCES`]), only contacts whose normals lie within 30° of that line
+    /// ([`ALONG_COS`]) and that close or part no faster than that speed join the cluster: a
+    /// collapse runs along the line of its impacts (a struck row), the contacts across it (the
+    /// row's neighbours on either side, a floor under it) would take no impulse from the solve
+    /// but fill the cluster's room (taking them, a struck row of 100 in a lattice of marbles
+    /// was squeezed 937 times at one instant, each cluster about 105 marbles around one point
+    /// of the row), and a fast contact's bounces are not the collapse's to end. If a contact
+    /// along the line closes faster, the collapse is not over: nothing is solved, and false is
+    /// returned.
     pub(super) fn squeeze(
         &mut self,
         component: &[Event],
         t: f64,
-        along: Option<DVec3>,
+        along: Option<(DVec3, f64)>,
         ctx: &StepContext<'_>,
         stats: &mut StepStats,
-    ) {
+    ) -> bool {
         let mut joined = std::mem::take(&mut self.joined);
         let mut candidates = std::mem::take(&mut self.candidates);
         let mut cluster = std::mem::take(&mut self.squeeze_cluster);
+        let mut over = true;
         let words = self.segments.len().div_ceil(64);
         if self.squeeze_bits.len() < words {
             self.squeeze_bits.resize(words, 0);
@@ -102,7 +107,7 @@ impl Solver {
         // Breadth first over the dynamic bodies touching at `t`: a pair is added when the
         // first of its bodies is reached (the other not yet looked at, or fixed).
         let mut next = 0;
-        while next < cluster.len() && joined.len() < SQUEEZE_CONTACTS {
+        while over && next < cluster.len() && joined.len() < SQUEEZE_CONTACTS {
             let k = cluster[next] as usize;
             next += 1;
             self.squeeze_done[k / 64] |= 1 << (k % 64);
@@ -123,10 +128,20 @@ impl Solver {
                 if d.length_squared() > touch * touch {
                     continue;
                 }
-                if let Some(line) = along
-                    && d.dot(line).abs() < ALONG_COS * d.length()
-                {
-                    continue;
+                if let Some((line, slow)) = along {
+                    let length = d.length();
+                    if d.dot(line).abs() < ALONG_COS * length {
+                        continue;
+                    }
+                    let parting = (sm.velocity - sk.velocity).dot(d);
+                    if parting < -slow * length {
+                        // Still closing fast: the collapse is not over, its bounces go on.
+                        over = false;
+                        break;
+                    }
+                    if parting > slow * length {
+                        continue;
+                    }
                 }
                 let (a, b) = (k.min(m) as u32, k.max(m) as u32);
                 if !component.iter().any(|e| (e.a, e.b) == (a, b)) {
@@ -150,6 +165,10 @@ impl Solver {
         }
         self.candidates = candidates;
         self.squeeze_cluster = cluster;
+        if !over {
+            self.joined = joined;
+            return false;
+        }
         self.inelastic = true;
         self.resolve_group(&joined, t, ctx, stats);
         self.inelastic = false;
@@ -158,6 +177,7 @@ impl Solver {
             self.touch(e.b);
         }
         self.joined = joined;
+        true
     }
 
     /// Whether impact `e` is a resting one (see [`Solver::restitution`]) on bodies without
@@ -241,6 +261,7 @@ impl Solver {
         }
         self.local_contacts.clear();
         self.local_resting.clear();
+        self.local_bounces.clear();
         for e in events {
             let (sa, sb) = (&self.segments[e.a as usize], &self.segments[e.b as usize]);
             let d = sb.position - sa.position;
@@ -288,6 +309,12 @@ impl Solver {
                 0.0
             };
             self.local_resting.push(resting);
+            // A bounce's approach (see `COLLAPSE_BOUNCES`), before the solve changes the
+            // velocities (and, on top of a shifted solve, every restitution); or none.
+            self.local_bounces.push(
+                (!resting && restitution > 0.0 && restitution < 1.0)
+                    .then(|| -(self.local_velocities[lb] - self.local_velocities[la]).dot(normal)),
+            );
             self.local_contacts.push(GroupContact {
                 a: la,
                 b: lb,
@@ -413,8 +440,8 @@ impl Solver {
             } else if resting {
                 self.instant
                     .record(a as u32, b as u32, moving(&self.segments));
-            } else if c.restitution > 0.0 && c.restitution < 1.0 {
-                self.count_bounce(a, b);
+            } else if let Some(speed) = self.local_bounces[k] {
+                self.count_bounce(a, b, speed);
             }
             self.record_collision((a, b), t, c.normal, impulse, resting, ctx);
         }
@@ -530,7 +557,7 @@ impl Solver {
             self.instant
                 .record(event.a, event.b, moving(&self.segments));
         } else if restitution > 0.0 && restitution < 1.0 {
-            self.count_bounce(a, b);
+            self.count_bounce(a, b, -(sb.velocity - sa.velocity).dot(normal));
         }
         stats.collisions = stats.collisions.saturating_add(1);
         stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));

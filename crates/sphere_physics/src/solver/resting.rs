@@ -1366,8 +1366,7 @@ impl Solver {
         }
     }
 
-    /// Whether body `a` or `b` has bounced [`COLLAPSE_BOUNCES`] times at this instant, and
-    /// been squeezed for it fewer than [`SQUEEZES`] times (each squeeze counts as a bounce).
+    /// Whether body `a` or `b` has bounced [`COLLAPSE_BOUNCES`] times at this instant.
     pub(super) fn collapsing(&self, a: usize, b: usize) -> bool {
         let instant = &self.instant;
         let collapsing = |k: usize| {
@@ -1376,10 +1375,25 @@ impl Solver {
         instant.most_bounces() >= COLLAPSE_BOUNCES && (collapsing(a) || collapsing(b))
     }
 
-    /// Counts a bounce of pair `(a, b)` at this instant (see [`COLLAPSE_BOUNCES`]).
-    pub(super) fn count_bounce(&mut self, a: usize, b: usize) {
+    /// Counts a bounce of pair `(a, b)` at this instant, approaching at `speed` (see
+    /// [`COLLAPSE_BOUNCES`]).
+    pub(super) fn count_bounce(&mut self, a: usize, b: usize, speed: f64) {
         self.instant
-            .bounced(a as u32, b as u32, moving(&self.segments));
+            .bounced(a as u32, b as u32, speed, moving(&self.segments));
+    }
+
+    /// Whether impact `e` ends an inelastic collapse at its instant (see [`COLLAPSE_BOUNCES`]):
+    /// one of its bodies has bounced that often there, and it approaches at under
+    /// [`COLLAPSE_SPEED`] of the instant's fastest bounce.
+    pub(super) fn ends_collapse(&self, e: &Event) -> bool {
+        let (a, b) = (e.a as usize, e.b as usize);
+        if !self.collapsing(a, b) {
+            return false;
+        }
+        let (sa, sb) = (&self.segments[a], &self.segments[b]);
+        let d = sb.position_at(e.time) - sa.position_at(e.time);
+        let approach = -(sb.velocity - sa.velocity).dot(d.normalize_or_zero());
+        approach < COLLAPSE_SPEED * self.instant.fastest()
     }
 
     /// The acceleration pressing touching pair `(i, j)` together along `normal` at the start

@@ -216,22 +216,25 @@ const BODY_SHARE_STRUNG: u32 = 64;
 const SQUEEZES: u32 = 8;
 
 /// How many bounces (impacts with a restitution between 0 and 1) a dynamic body takes at one
-/// instant before a slow impact of its there may end an inelastic collapse. A ball striking a
+/// instant before slow impacts of its there may end an inelastic collapse. A ball striking a
 /// row of touching spheres with restitution 0.5 sets one off at the instant: the spheres behind
 /// catch up with those ahead again and again, each bounce slower, without end (a row of 10
 /// took 186 impacts, past the budget; a row of 40 spent the whole budget in each of two steps).
-/// An impact on such a body approaching at under [`COLLAPSE_SPEED`] of the instant's fastest
-/// bounce is squeezed (see [`Solver::squeeze`]): solved at once, restitution 0, with the
-/// contacts along its line that are as slow (closing or parting), where the bounces lead; if
-/// a contact along that line still closes faster, the collapse is not over and the impact is
-/// taken as usual. A sequence of bounces that ends by itself (a row of 40 at restitution 0.9,
-/// about 1100 bounces taken one by one) is left to end: its slow contacts are squeezed at most, which takes
-/// next to nothing of its energy (3.55% of it left, as the bounces leave). Bodies' bounces are
-/// counted from an instant's [`InstantContacts::COUNT_FROM`]th on, so a body qualifies after
-/// 16 to 31 bounces at one instant; it is squeezed so at most [`SQUEEZES`] times an instant
-/// (each counts as a bounce), and not in a world with strings, after a fallback, or with the
-/// budget spent (as any squeeze). Elastic bounces (restitution 1) are not counted: they end
-/// by themselves, and a squeeze would take their energy.
+/// Impacts taken together at one instant, one of them on such a body, each approaching at
+/// under [`COLLAPSE_SPEED`] of the instant's fastest bounce, are squeezed (see
+/// [`Solver::squeeze`]): solved at once, restitution 0, with the contacts along the first one's
+/// line that are as slow (closing or parting), where the bounces lead; if a contact along that
+/// line still closes faster, the collapse is not over and the impacts are taken as usual. A
+/// sequence of bounces that ends by itself (a row of 40 at restitution 0.9, about 1100
+/// bounces taken one by one) is left to end: its slow contacts are squeezed at most, which
+/// takes next to nothing of its energy (3.55% of it left, as the bounces leave). Bodies'
+/// bounces are counted from an instant's [`InstantContacts::COUNT_FROM`]th on, so a body
+/// qualifies once it has taken 16 to 31 bounces at one instant, and while fewer than
+/// [`SQUEEZES`] collapses' squeezes have taken it there (each counts as a bounce: it
+/// qualifies with 16 to 23 counted). Not a body past its share of the budget (its impacts are
+/// deferred unless its share's squeeze takes them), nor in a world with strings, after a
+/// fallback, or with the budget spent (as any squeeze). Elastic bounces (restitution 1) are
+/// not counted: they end by themselves, and a squeeze would take their energy.
 const COLLAPSE_BOUNCES: u32 = 16;
 
 /// How slowly, against the fastest bounce of its instant, an impact on a body past
@@ -1408,8 +1411,11 @@ impl Solver {
                 // An inelastic collapse at this instant (see `COLLAPSE_BOUNCES`) is ended by
                 // a squeeze too: it stops every contact of its cluster closing at once, as
                 // the bounces would in the limit.
-                let collapsing = self.instant.most_bounces() >= COLLAPSE_BOUNCES
-                    && component.iter().any(|e| self.ends_collapse(e));
+                // (Not on a body past its share: its impacts are deferred unless squeezed as
+                // above, and a collapse's squeeze may find the collapse not over.)
+                let collapsing = !over_share
+                    && self.instant.most_bounces() >= COLLAPSE_BOUNCES
+                    && self.ends_collapse(component);
                 let squeeze = (squeezable || collapsing)
                     && events < budget
                     && !self.strings

@@ -68,7 +68,8 @@ impl Solver {
     ///
     /// With `along` (a collapse's squeeze: the first impact's normal and a speed, see
     /// [`COLLAPSE_BOUNCES`]), only contacts whose normals lie within 30° of that line
-    /// ([`ALONG_COS`]) and that close or part no faster than that speed join the cluster: a
+    /// ([`ALONG_COS`]) and that close or part no faster than that speed join the cluster
+    /// beside `component`'s own impacts (which the caller has found as slow): a
     /// collapse runs along the line of its impacts (a struck row), the contacts across it (the
     /// row's neighbours on either side, a floor under it) would take no impulse from the solve
     /// but fill the cluster's room (taking them, a struck row of 100 in a lattice of marbles

@@ -1382,18 +1382,21 @@ impl Solver {
             .bounced(a as u32, b as u32, speed, moving(&self.segments));
     }
 
-    /// Whether impact `e` ends an inelastic collapse at its instant (see [`COLLAPSE_BOUNCES`]):
-    /// one of its bodies has bounced that often there, and it approaches at under
-    /// [`COLLAPSE_SPEED`] of the instant's fastest bounce.
-    pub(super) fn ends_collapse(&self, e: &Event) -> bool {
-        let (a, b) = (e.a as usize, e.b as usize);
-        if !self.collapsing(a, b) {
-            return false;
-        }
-        let (sa, sb) = (&self.segments[a], &self.segments[b]);
-        let d = sb.position_at(e.time) - sa.position_at(e.time);
-        let approach = -(sb.velocity - sa.velocity).dot(d.normalize_or_zero());
-        approach < COLLAPSE_SPEED * self.instant.fastest()
+    /// Whether the impacts of `component` end an inelastic collapse at their instant (see
+    /// [`COLLAPSE_BOUNCES`]): a body of one of them has bounced that often there, and every
+    /// one of them approaches at under [`COLLAPSE_SPEED`] of the instant's fastest bounce (a
+    /// squeeze takes every impact of its component, whatever its direction: a fast one would
+    /// lose its bounce).
+    pub(super) fn ends_collapse(&self, component: &[Event]) -> bool {
+        let slow = COLLAPSE_SPEED * self.instant.fastest();
+        component
+            .iter()
+            .any(|e| self.collapsing(e.a as usize, e.b as usize))
+            && component.iter().all(|e| {
+                let (sa, sb) = (&self.segments[e.a as usize], &self.segments[e.b as usize]);
+                let d = sb.position_at(e.time) - sa.position_at(e.time);
+                -(sb.velocity - sa.velocity).dot(d.normalize_or_zero()) < slow
+            })
     }
 
     /// The acceleration pressing touching pair `(i, j)` together along `normal` at the start

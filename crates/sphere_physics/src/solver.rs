@@ -1409,10 +1409,9 @@ impl Solver {
                 // Not after a fallback: a squeeze ends every push, the fallback's on the
                 // bodies it took among them, and its cluster may reach those bodies.
                 // An inelastic collapse at this instant (see `COLLAPSE_BOUNCES`) is ended by
-                // a squeeze too: it stops every contact of its cluster closing at once, as
-                // the bounces would in the limit.
-                // (Not on a body past its share: its impacts are deferred unless squeezed as
-                // above, and a collapse's squeeze may find the collapse not over.)
+                // a squeeze too, as the bounces would end in the limit; not on a body past its
+                // share (its impacts are deferred unless squeezed as above, and a collapse's
+                // squeeze may find the collapse not over).
                 let collapsing = !over_share
                     && self.instant.most_bounces() >= COLLAPSE_BOUNCES
                     && self.ends_collapse(component);
@@ -1453,7 +1452,8 @@ impl Solver {
                     continue;
                 }
                 if squeeze {
-                    let along = (collapsing && !squeezable).then(|| {
+                    // (A collapse is never `squeezable`: that asks for a body past its share.)
+                    let along = collapsing.then(|| {
                         let e = &component[0];
                         let (a, b) = (&self.segments[e.a as usize], &self.segments[e.b as usize]);
                         let line = (b.position_at(event.time) - a.position_at(event.time))

@@ -17,7 +17,8 @@ pub struct LabUiPlugin;
 
 impl Plugin for LabUiPlugin {
     fn build(&self, app: &mut App) {
-        // Keys typed into an egui text field (a game's own UI) are not the lab's.
+        // Keys typed into an egui text field (a game's own UI) are not the lab's. (Nothing in
+        // the lab's own windows takes the keyboard: see `click_only`.)
         app.add_systems(EguiPrimaryContextPass, (panel, chooser).chain())
             .configure_sets(
                 Update,
@@ -43,8 +44,42 @@ fn chooser(
     // so the wheel still scrolls freely).
     let follow = *shown_selection != Some(ui_state.selected);
     *shown_selection = Some(ui_state.selected);
-    let ctx = contexts.ctx_mut()?;
+    let loaded = *state.get() != ActiveScene::None;
+    chooser_window(
+        contexts.ctx_mut()?,
+        &mut ui_state,
+        &scenes,
+        loaded,
+        follow,
+        &mut |action| {
+            actions.write(action);
+        },
+    );
+    Ok(())
+}
+
+/// The widgets of the lab's windows take clicks but never the keyboard's focus: egui gives
+/// Tab's focus to the first widget that can take it, and while one has it every key is egui's
+/// (`egui_wants_any_keyboard_input`), so a Tab, pressed by chance, held the lab's keys until a
+/// click elsewhere or Escape, and Space then pressed the focused button instead of saving a
+/// screenshot. Each button has its key already. A game's own text fields still take the
+/// keyboard.
+fn click_only(button: egui::Button<'_>) -> egui::Button<'_> {
+    button.sense(egui::Sense::CLICK)
+}
+
+/// The scene chooser: the scenes (`follow`: scroll to the selected one), the selected one's
+/// description, the registry's errors, OK and (with a scene `loaded`) Cancel.
+fn chooser_window(
+    ctx: &egui::Context,
+    ui_state: &mut LabUi,
+    scenes: &LabScenes,
+    loaded: bool,
+    follow: bool,
+    actions: &mut impl FnMut(LabAction),
+) {
     egui::Window::new("Choose a scene")
+        .id(egui::Id::new(CHOOSER))
         .collapsible(false)
         .resizable(false)
         .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
@@ -55,7 +90,8 @@ fn chooser(
                 .show(ui, |ui| {
                     for (i, scene) in scenes.iter().enumerate() {
                         let selected = ui_state.selected == i;
-                        let label = ui.selectable_label(selected, &scene.name);
+                        let label =
+                            ui.add(click_only(egui::Button::selectable(selected, &scene.name)));
                         if selected && follow {
                             label.scroll_to_me(None);
                         }
@@ -63,7 +99,7 @@ fn chooser(
                             ui_state.selected = i;
                         }
                         if label.double_clicked() {
-                            actions.write(LabAction::LoadSelected);
+                            actions(LabAction::LoadSelected);
                         }
                     }
                 });
@@ -77,16 +113,15 @@ fn chooser(
             }
             ui.separator();
             ui.horizontal(|ui| {
-                if ui.button("OK").clicked() {
-                    actions.write(LabAction::LoadSelected);
+                if ui.add(click_only(egui::Button::new("OK"))).clicked() {
+                    actions(LabAction::LoadSelected);
                 }
-                if *state.get() != ActiveScene::None && ui.button("Cancel").clicked() {
-                    actions.write(LabAction::CloseChooser);
+                if loaded && ui.add(click_only(egui::Button::new("Cancel"))).clicked() {
+                    actions(LabAction::CloseChooser);
                 }
                 ui.weak("Up/Down select, Enter loads");
             });
         });
-    Ok(())
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -101,18 +136,53 @@ fn panel(
     status: Res<ScreenshotStatus>,
     mut actions: MessageWriter<LabAction>,
 ) -> Result {
-    let ctx = contexts.ctx_mut()?;
     let name = state
         .get()
         .id()
         .and_then(|id| scenes.get(id))
         .map_or("no scene", |s| s.name.as_str());
-    let world = &physics.world;
+    let view = PanelView {
+        name,
+        world: &physics.world,
+        diagnostics: &diagnostics,
+        shown: shown.0,
+        paused: clock.paused,
+        status: &status,
+    };
+    panel_window(contexts.ctx_mut()?, &view, &mut |action| {
+        actions.write(action);
+    });
+    Ok(())
+}
+
+/// The panel's egui id.
+const PANEL: &str = "sphere_lab panel";
+
+/// The chooser's egui id.
+const CHOOSER: &str = "sphere_lab chooser";
+
+/// What the panel shows.
+struct PanelView<'a> {
+    name: &'a str,
+    world: &'a bevy_sphere_physics::sphere_physics::World,
+    diagnostics: &'a SpherePhysicsDiagnostics,
+    /// The simulated time shown.
+    shown: f64,
+    paused: bool,
+    status: &'a ScreenshotStatus,
+}
+
+/// The panel: the scene's name and figures, its buttons and the last screenshot's outcome.
+/// Not collapsible: its title bar's triangle would take Tab's focus (see `click_only`).
+fn panel_window(ctx: &egui::Context, view: &PanelView<'_>, actions: &mut impl FnMut(LabAction)) {
+    let (world, diagnostics, status) = (view.world, view.diagnostics, view.status);
     egui::Window::new("Sphere lab")
+        .id(egui::Id::new(PANEL))
         .anchor(egui::Align2::LEFT_TOP, [8.0, 8.0])
         .resizable(false)
+        .collapsible(false)
         .show(ctx, |ui| {
-            ui.strong(name);
+            ui.strong(view.name);
             egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
                 let mut row = |label: &str, value: String| {
                     ui.label(label);
@@ -123,8 +193,8 @@ fn panel(
                     "time",
                     format!(
                         "{:.3} s{}",
-                        shown.0,
-                        if clock.paused { " (paused)" } else { "" }
+                        view.shown,
+                        if view.paused { " (paused)" } else { "" }
                     ),
                 );
                 // With sleeping on (the ball pit's), how many are asleep.
@@ -161,30 +231,31 @@ fn panel(
                 );
             });
             ui.horizontal(|ui| {
-                let pause = if clock.paused {
+                let pause = if view.paused {
                     "Resume (P)"
                 } else {
                     "Pause (P)"
                 };
-                if ui.button(pause).clicked() {
-                    actions.write(LabAction::TogglePause);
-                }
-                if ui
-                    .add_enabled(clock.paused, egui::Button::new("Step (N)"))
-                    .clicked()
-                {
-                    actions.write(LabAction::StepOnce);
-                }
-                if ui.button("Restart (R)").clicked() {
-                    actions.write(LabAction::Restart);
-                }
+                let mut button = |ui: &mut egui::Ui, enabled: bool, text: &str, action| {
+                    if ui
+                        .add_enabled(enabled, click_only(egui::Button::new(text)))
+                        .clicked()
+                    {
+                        actions(action);
+                    }
+                };
+                button(ui, true, pause, LabAction::TogglePause);
+                button(ui, view.paused, "Step (N)", LabAction::StepOnce);
+                button(ui, true, "Restart (R)", LabAction::Restart);
             });
             ui.horizontal(|ui| {
-                if ui.button("Scenes (Enter)").clicked() {
-                    actions.write(LabAction::OpenChooser);
-                }
-                if ui.button("Screenshot (Space)").clicked() {
-                    actions.write(LabAction::Screenshot);
+                for (text, action) in [
+                    ("Scenes (Enter)", LabAction::OpenChooser),
+                    ("Screenshot (Space)", LabAction::Screenshot),
+                ] {
+                    if ui.add(click_only(egui::Button::new(text))).clicked() {
+                        actions(action);
+                    }
                 }
             });
             if status.saving > 0 {
@@ -207,5 +278,161 @@ fn panel(
             }
             ui.weak("orbit: drag or arrows · zoom: wheel or -/=");
         });
-    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use bevy_sphere_physics::sphere_physics::{Settings, World as PhysicsWorld};
+    use egui::{
+        Event, Id, Key, LayerId, Modifiers, Order, PointerButton, Pos2, RawInput, Rect, Sense, vec2,
+    };
+
+    use super::*;
+    use crate::scenes::{LabAppExt, LabScene};
+
+    /// The lab's two windows in a bare egui context, as the lab shows them (the chooser open,
+    /// a scene loaded), one pass at a time.
+    struct Lab {
+        ctx: egui::Context,
+        ui_state: LabUi,
+        scenes: LabScenes,
+        world: PhysicsWorld,
+        status: ScreenshotStatus,
+        diagnostics: SpherePhysicsDiagnostics,
+    }
+
+    impl Lab {
+        fn new() -> Self {
+            let mut app = App::new();
+            app.add_lab_scene(LabScene::new("one", "One", "The first."), || {})
+                .add_lab_scene(LabScene::new("two", "Two", "The second."), || {});
+            Lab {
+                ctx: egui::Context::default(),
+                ui_state: LabUi {
+                    chooser_open: true,
+                    selected: 0,
+                },
+                scenes: app.world().resource::<LabScenes>().clone(),
+                world: PhysicsWorld::new(Settings::default()),
+                status: ScreenshotStatus::default(),
+                diagnostics: SpherePhysicsDiagnostics::default(),
+            }
+        }
+
+        /// One pass with `events`: the actions the windows asked for.
+        fn pass(&mut self, events: Vec<Event>) -> Vec<LabAction> {
+            let input = RawInput {
+                events,
+                screen_rect: Some(Rect::from_min_size(Pos2::ZERO, vec2(1280.0, 720.0))),
+                ..Default::default()
+            };
+            let mut actions = Vec::new();
+            let view = PanelView {
+                name: "One",
+                world: &self.world,
+                diagnostics: &self.diagnostics,
+                shown: 0.0,
+                paused: true,
+                status: &self.status,
+            };
+            let (ui_state, scenes) = (&mut self.ui_state, &self.scenes);
+            self.ctx
+                .run_ui(input, |ui| {
+                    panel_window(ui.ctx(), &view, &mut |a| actions.push(a));
+                    chooser_window(ui.ctx(), ui_state, scenes, true, false, &mut |a| {
+                        actions.push(a)
+                    });
+                })
+                .drop_without_applying_deltas();
+            actions
+        }
+
+        /// The buttons of the window with id `title` that the last pass laid out, in order:
+        /// its widgets that take clicks (not drags, as text does for its selection), after the
+        /// window's own.
+        fn buttons(&self, title: &str) -> Vec<Rect> {
+            let layer = LayerId::new(Order::Middle, Id::new(title));
+            self.ctx.viewport(|v| {
+                v.prev_pass
+                    .widgets
+                    .get_layer(layer)
+                    .filter(|w| w.sense == Sense::CLICK)
+                    // The window's own area, which takes clicks to come to the front.
+                    .skip(1)
+                    .map(|w| w.interact_rect)
+                    .collect()
+            })
+        }
+    }
+
+    fn key(key: Key, pressed: bool) -> Event {
+        Event::Key {
+            key,
+            physical_key: None,
+            pressed,
+            repeat: false,
+            modifiers: Modifiers::NONE,
+        }
+    }
+
+    fn click(at: Pos2, pressed: bool) -> Vec<Event> {
+        vec![
+            Event::PointerMoved(at),
+            Event::PointerButton {
+                pos: at,
+                button: PointerButton::Primary,
+                pressed,
+                modifiers: Modifiers::NONE,
+            },
+        ]
+    }
+
+    /// Tab gives no widget of the lab's the keyboard (which would hold the lab's keys, see
+    /// `click_only`), and Space or Enter then press nothing.
+    #[test]
+    fn tab_leaves_the_keys_to_the_lab() {
+        let mut lab = Lab::new();
+        assert!(lab.pass(vec![]).is_empty());
+        for pressed in [Key::Tab, Key::Tab, Key::Space, Key::Enter, Key::Tab] {
+            let actions = lab.pass(vec![key(pressed, true), key(pressed, false)]);
+            assert_eq!(actions, [], "{pressed:?} pressed a button");
+            assert_eq!(lab.ctx.memory(|m| m.focused()), None, "after {pressed:?}");
+            assert!(!lab.ctx.egui_wants_keyboard_input(), "after {pressed:?}");
+        }
+    }
+
+    /// The buttons still take clicks: each of the panel's five and the chooser's two scenes,
+    /// OK and Cancel, in the order they are laid out.
+    #[test]
+    fn buttons_take_clicks() {
+        let mut lab = Lab::new();
+        lab.pass(vec![]);
+        let panel = [
+            LabAction::TogglePause,
+            LabAction::StepOnce,
+            LabAction::Restart,
+            LabAction::OpenChooser,
+            LabAction::Screenshot,
+        ]
+        .map(|a| vec![a]);
+        let chooser = [
+            vec![],
+            vec![],
+            vec![LabAction::LoadSelected],
+            vec![LabAction::CloseChooser],
+        ];
+        for (title, expected) in [(PANEL, &panel[..]), (CHOOSER, &chooser[..])] {
+            let buttons = lab.buttons(title);
+            assert_eq!(buttons.len(), expected.len(), "{title}: {buttons:?}");
+            for (rect, expected) in buttons.iter().zip(expected) {
+                lab.pass(vec![Event::PointerMoved(rect.center())]);
+                lab.pass(click(rect.center(), true));
+                let actions = lab.pass(click(rect.center(), false));
+                assert_eq!(&actions, expected, "{title}: clicked at {rect:?}");
+                lab.pass(vec![Event::PointerGone]);
+            }
+        }
+        // The second scene's label, clicked, selected it.
+        assert_eq!(lab.ui_state.selected, 1);
+    }
 }

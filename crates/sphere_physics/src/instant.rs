@@ -12,8 +12,8 @@
 //! Contacts are kept in one list per dynamic body (a fixed body's velocity never changes, so
 //! it joins nothing), so that finding a body's contacts and everything connected to them costs
 //! what the bodies reached have recorded at this instant (contacts already gathered or
-//! replaced stay in their lists, marked), however many contacts the instant holds (a sheet of
-//! spheres landing at once makes tens of thousands).
+//! replaced are marked, and dropped from a list when it is next walked), however many contacts
+//! the instant holds (a sheet of spheres landing at once makes tens of thousands).
 
 /// The end of a body's list.
 const NONE: u32 = u32::MAX;
@@ -166,7 +166,8 @@ impl InstantContacts {
         }
     }
 
-    /// Whether dynamic body `k` has a contact at this instant.
+    /// Whether dynamic body `k` has a contact at this instant that may still be gathered (or
+    /// a used one its list has not dropped yet).
     pub(crate) fn involves(&self, k: u32) -> bool {
         self.head(k) != NONE
     }

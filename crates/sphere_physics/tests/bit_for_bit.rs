@@ -84,7 +84,10 @@ fn a_landing_ball_pit_steps_the_same_bit_for_bit() {
         fell_back > 0,
         "the pit no longer spends its collision budget"
     );
-    check("pit", got, 0xfaab_8136_fb5c_efcd);
+    // (Recorded anew in the sixtieth session, from 0xfaab_8136_fb5c_efcd: the collision
+    // counts, not the motion, changed, a squeeze's contacts that took no impulse no longer
+    // reported.)
+    check("pit", got, 0xd8e7_1b68_68e7_25f5);
 }
 
 /// 2000 spheres of radius 0.05 (restitution 0.5) raining onto a fixed dome (`sphere_bench`'s

@@ -68,6 +68,12 @@ fn click_only(button: egui::Button<'_>) -> egui::Button<'_> {
     button.sense(egui::Sense::CLICK)
 }
 
+/// Whether the lab's button `text` (shown greyed out unless `enabled`) was clicked.
+fn clicked(ui: &mut egui::Ui, enabled: bool, text: &str) -> bool {
+    ui.add_enabled(enabled, click_only(egui::Button::new(text)))
+        .clicked()
+}
+
 /// The scene chooser: the scenes (`follow`: scroll to the selected one), the selected one's
 /// description, the registry's errors, OK and (with a scene `loaded`) Cancel.
 fn chooser_window(
@@ -113,10 +119,10 @@ fn chooser_window(
             }
             ui.separator();
             ui.horizontal(|ui| {
-                if ui.add(click_only(egui::Button::new("OK"))).clicked() {
+                if clicked(ui, true, "OK") {
                     actions(LabAction::LoadSelected);
                 }
-                if loaded && ui.add(click_only(egui::Button::new("Cancel"))).clicked() {
+                if loaded && clicked(ui, true, "Cancel") {
                     actions(LabAction::CloseChooser);
                 }
                 ui.weak("Up/Down select, Enter loads");
@@ -236,26 +242,22 @@ fn panel_window(ctx: &egui::Context, view: &PanelView<'_>, actions: &mut impl Fn
                 } else {
                     "Pause (P)"
                 };
-                let mut button = |ui: &mut egui::Ui, enabled: bool, text: &str, action| {
-                    if ui
-                        .add_enabled(enabled, click_only(egui::Button::new(text)))
-                        .clicked()
-                    {
-                        actions(action);
-                    }
-                };
-                button(ui, true, pause, LabAction::TogglePause);
-                button(ui, view.paused, "Step (N)", LabAction::StepOnce);
-                button(ui, true, "Restart (R)", LabAction::Restart);
+                if clicked(ui, true, pause) {
+                    actions(LabAction::TogglePause);
+                }
+                if clicked(ui, view.paused, "Step (N)") {
+                    actions(LabAction::StepOnce);
+                }
+                if clicked(ui, true, "Restart (R)") {
+                    actions(LabAction::Restart);
+                }
             });
             ui.horizontal(|ui| {
-                for (text, action) in [
-                    ("Scenes (Enter)", LabAction::OpenChooser),
-                    ("Screenshot (Space)", LabAction::Screenshot),
-                ] {
-                    if ui.add(click_only(egui::Button::new(text))).clicked() {
-                        actions(action);
-                    }
+                if clicked(ui, true, "Scenes (Enter)") {
+                    actions(LabAction::OpenChooser);
+                }
+                if clicked(ui, true, "Screenshot (Space)") {
+                    actions(LabAction::Screenshot);
                 }
             });
             if status.saving > 0 {

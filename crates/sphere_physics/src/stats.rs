@@ -16,10 +16,11 @@ pub struct StepStats {
     /// Contacts resolved, resting contacts included: one per record in
     /// [`World::collisions`](crate::World::collisions). A contact of a simultaneous group that
     /// needed no impulse counts (its record's impulse is 0), and a resting contact solved again
-    /// at the same instant, together with a later impact it joins, counts again. (Not the
-    /// touching contacts solved with a squeeze's impacts that took no impulse, a squeeze
-    /// being how an inelastic collapse, or a light sphere bouncing between heavier ones, is
-    /// ended; see [`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body).)
+    /// at the same instant, together with a later impact it joins, counts again. Not
+    /// counted: a squeeze's contacts (its impacts, and the touching contacts solved with them)
+    /// that took no impulse (none, or one too small to change a velocity), a squeeze being
+    /// how an inelastic collapse, or a light sphere bouncing between heavier ones, is ended
+    /// (see [`Settings::max_collisions_per_body`](crate::Settings::max_collisions_per_body)).
     pub collisions: u32,
     /// Of those, collisions slower than the relative acceleration gains in
     /// [`Settings::resting_factor`](crate::Settings::resting_factor) steps, resolved with

@@ -76,7 +76,8 @@ pub struct Settings {
     /// restitution 0 (a light sphere squeezed between heavy ones bounces faster and faster,
     /// without end before the squeeze does; this is how those bounces end), a few times in a
     /// step, and its collisions after that are deferred to the next step and counted in
-    /// [`StepStats::collisions_deferred`]. The shower and gas benchmarks take under 0.3
+    /// [`StepStats::collisions_deferred`]. (Every contact such a squeeze solves counts
+    /// against the budget, those it reports as collisions or not.) The shower and gas benchmarks take under 0.3
     /// collisions per sphere per step in their first second, and a sphere sliding down the
     /// dome in the 100k shower's film at its climax up to 2228. With substeps, each substep
     /// has this budget (and records its collisions): a wedged sphere may take `substeps` times

@@ -47,6 +47,8 @@ fn regression_a_struck_racks_collisions_all_carry_an_impulse() {
     assert_eq!(stats.collisions as usize, collisions.len());
     // The collapse's squeezes ran (the rack takes 237 collisions, 307 reported before).
     assert!(stats.collisions > 200, "{stats:?}");
+    // (A group of simultaneous impacts may still report one its others stopped, with no
+    // impulse: this rack's have none.)
     let empty = collisions.iter().filter(|c| c.impulse <= 0.0).count();
     assert_eq!(
         empty,

@@ -434,10 +434,11 @@ impl Solver {
             );
             let inverse_masses = self.local_inverse_masses[c.a] + self.local_inverse_masses[c.b];
             if self.inelastic && gave_none(impulse, inverse_masses, settings) {
-                // A squeeze's contact that took no impulse (one of the cluster's touching
-                // contacts, closing too slowly or parting: four in ten of a struck rack's)
-                // met nothing, and is not reported as a collision. (The collision budget
-                // still counts it: the squeeze's work grows with its cluster.)
+                // A squeeze's contact that took no impulse (mostly the cluster's touching
+                // contacts, closing too slowly or parting: four in ten of a struck rack's; an
+                // impact of the squeeze's own the others' impulses stopped) met nothing, and
+                // is not reported as a collision. (The collision budget still counts it: the
+                // squeeze's work grows with its cluster.)
                 self.settled.push(Settled::now(&self.versions, a, b));
                 continue;
             }

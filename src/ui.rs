@@ -292,10 +292,17 @@ mod tests {
     use super::*;
     use crate::scenes::{LabAppExt, LabScene};
 
-    /// The lab's two windows in a bare egui context, as the lab shows them (the chooser open,
-    /// a scene loaded), one pass at a time.
+    /// The lab's two windows in a bare egui context, as the lab shows them (the chooser open),
+    /// one pass at a time.
     struct Lab {
         ctx: egui::Context,
+        /// Whether a scene is loaded (the chooser offers Cancel).
+        loaded: bool,
+        /// Whether the physics is paused (the panel's Step is enabled).
+        paused: bool,
+        /// The next pass's time, a frame of 60 Hz after the last (from 10 s: egui takes the
+        /// first clicks within 0.6 s of its start for the third of three).
+        time: f64,
         ui_state: LabUi,
         scenes: LabScenes,
         world: PhysicsWorld,
@@ -310,6 +317,9 @@ mod tests {
                 .add_lab_scene(LabScene::new("two", "Two", "The second."), || {});
             Lab {
                 ctx: egui::Context::default(),
+                loaded: true,
+                paused: true,
+                time: 10.0,
                 ui_state: LabUi {
                     chooser_open: true,
                     selected: 0,
@@ -323,8 +333,10 @@ mod tests {
 
         /// One pass with `events`: the actions the windows asked for.
         fn pass(&mut self, events: Vec<Event>) -> Vec<LabAction> {
+            self.time += 1.0 / 60.0;
             let input = RawInput {
                 events,
+                time: Some(self.time),
                 screen_rect: Some(Rect::from_min_size(Pos2::ZERO, vec2(1280.0, 720.0))),
                 ..Default::default()
             };
@@ -334,14 +346,14 @@ mod tests {
                 world: &self.world,
                 diagnostics: &self.diagnostics,
                 shown: 0.0,
-                paused: true,
+                paused: self.paused,
                 status: &self.status,
             };
-            let (ui_state, scenes) = (&mut self.ui_state, &self.scenes);
+            let (ui_state, scenes, loaded) = (&mut self.ui_state, &self.scenes, self.loaded);
             self.ctx
                 .run_ui(input, |ui| {
                     panel_window(ui.ctx(), &view, &mut |a| actions.push(a));
-                    chooser_window(ui.ctx(), ui_state, scenes, true, false, &mut |a| {
+                    chooser_window(ui.ctx(), ui_state, scenes, loaded, false, &mut |a| {
                         actions.push(a)
                     });
                 })
@@ -436,5 +448,34 @@ mod tests {
         }
         // The second scene's label, clicked, selected it.
         assert_eq!(lab.ui_state.selected, 1);
+    }
+
+    /// A scene's label double-clicked loads it; the panel's Step does nothing while the
+    /// physics runs; the chooser offers no Cancel before a scene is loaded.
+    #[test]
+    fn double_click_loads_step_waits_and_cancel_needs_a_scene() {
+        let mut lab = Lab::new();
+        // (A window is laid out where it stays from its second pass.)
+        lab.pass(vec![]);
+        lab.pass(vec![]);
+        let second = lab.buttons(CHOOSER)[1].center();
+        lab.pass(vec![Event::PointerMoved(second)]);
+        let mut actions = Vec::new();
+        for pressed in [true, false, true, false] {
+            actions.extend(lab.pass(click(second, pressed)));
+        }
+        assert_eq!(actions, [LabAction::LoadSelected]);
+        assert_eq!(lab.ui_state.selected, 1);
+
+        let mut lab = Lab::new();
+        (lab.loaded, lab.paused) = (false, false);
+        lab.pass(vec![]);
+        lab.pass(vec![]);
+        // The two scenes and OK.
+        assert_eq!(lab.buttons(CHOOSER).len(), 3);
+        let step = lab.buttons(PANEL)[1].center();
+        lab.pass(vec![Event::PointerMoved(step)]);
+        lab.pass(click(step, true));
+        assert_eq!(lab.pass(click(step, false)), []);
     }
 }

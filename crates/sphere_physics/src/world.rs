@@ -77,9 +77,9 @@ pub struct Settings {
     /// without end before the squeeze does; this is how those bounces end), a few times in a
     /// step, and its collisions after that are deferred to the next step and counted in
     /// [`StepStats::collisions_deferred`]. (Every contact such a squeeze solves counts
-    /// against the budget, those it reports as collisions or not.) The shower and gas benchmarks take under 0.3
-    /// collisions per sphere per step in their first second, and a sphere sliding down the
-    /// dome in the 100k shower's film at its climax up to 2228. With substeps, each substep
+    /// against the budget, those it reports as collisions or not.) The shower and gas
+    /// benchmarks take under 0.3 collisions per sphere per step in their first second, and a
+    /// sphere sliding down the dome in the 100k shower's film at its climax up to 2228. With substeps, each substep
     /// has this budget (and records its collisions): a wedged sphere may take `substeps` times
     /// as many in one [`World::step`]. Default 16 (64 until 2026-12-01, when the budget's end
     /// deferred the rest: a landing crowd then sank 4.5 cm into itself), at most

@@ -433,26 +433,25 @@ impl Solver {
                 self.local_bodies[c.b] as usize,
             );
             let inverse_masses = self.local_inverse_masses[c.a] + self.local_inverse_masses[c.b];
-            if self.inelastic && gave_none(impulse, inverse_masses, settings) {
-                // A squeeze's contact that took no impulse (mostly the cluster's touching
-                // contacts, closing too slowly or parting: four in ten of a struck rack's; an
-                // impact of the squeeze's own the others' impulses stopped) met nothing, and
-                // is not reported as a collision. (The collision budget still counts it: the
-                // squeeze's work grows with its cluster.)
-                self.settled.push(Settled::now(&self.versions, a, b));
-                continue;
-            }
-            stats.collisions = stats.collisions.saturating_add(1);
-            stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
             if gave_none(impulse, inverse_masses, settings) {
                 self.bend_sooner_if_closing(a, b, t, ctx);
                 self.settled.push(Settled::now(&self.versions, a, b));
+                if self.inelastic {
+                    // A squeeze's contact that took no impulse (mostly the cluster's touching
+                    // contacts, closing too slowly or parting: four in ten of a struck rack's;
+                    // an impact of the squeeze's own the others' impulses stopped) met nothing,
+                    // and is not reported as a collision. (The collision budget still counts
+                    // it: the squeeze's work grows with its cluster.)
+                    continue;
+                }
             } else if resting {
                 self.instant
                     .record(a as u32, b as u32, moving(&self.segments));
             } else if let Some(speed) = self.local_bounces[k] {
                 self.count_bounce(a, b, speed);
             }
+            stats.collisions = stats.collisions.saturating_add(1);
+            stats.resting_contacts = stats.resting_contacts.saturating_add(u32::from(resting));
             self.record_collision((a, b), t, c.normal, impulse, resting, ctx);
         }
     }

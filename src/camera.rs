@@ -1,6 +1,6 @@
-//! A camera that orbits a target: drag with the left mouse button (or the arrow keys while the
-//! chooser is closed) to orbit, scroll (or `-` / `=`, or the keypad's `-` / `+`) to zoom. Each scene is framed when it is
-//! entered.
+//! A camera that orbits a target: drag with the left mouse button (or the arrow keys) to orbit,
+//! scroll (or `-` / `=`, or the keypad's `-` / `+`) to zoom; the keys only while the chooser is
+//! closed. Each scene is framed when it is entered.
 
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;

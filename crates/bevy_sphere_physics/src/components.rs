@@ -154,14 +154,20 @@ pub struct SphereOrder(pub u64);
 #[reflect(Component)]
 pub struct NoInterpolation;
 
-/// Put on a sphere whose components are invalid (radius ≤ 0, NaN, ...): it is left out of the
-/// simulation until its components change. The error names the field and the value.
+/// Put on a sphere whose components are invalid (radius ≤ 0, NaN, ...), or whose motion would
+/// have left the finite range: it is left out of the simulation until its components change
+/// (or, if it was refused for its force's sum with the world's gravity, until the gravity
+/// does). The error names the field and the value.
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct RejectedSphere {
     /// What is wrong.
     pub error: BodyError,
     /// The description that was refused (tried again only once it changes).
     pub(crate) desc: sphere_physics::SphereDesc,
+    /// The world's gravity when it was refused, if the refusal was its (the sphere would be
+    /// taken without gravity): tried again once it changes. (Until the sixty-first session a
+    /// sphere refused under a gravity the game then mended stayed out.)
+    pub(crate) gravity: Option<bevy::math::DVec3>,
 }
 
 /// The core body of a sphere in the simulation, put on it by the plugin (read-only for games),

@@ -7,7 +7,11 @@ use sphere_physics::BodyError;
 
 /// One collision, written once per collision in
 /// [`SpherePhysicsSystems::Notify`](crate::SpherePhysicsSystems::Notify). Read it with
-/// `MessageReader<SphereCollision>`.
+/// `MessageReader<SphereCollision>`. Only collisions between two sphere entities are told:
+/// one with a body a game added to the core directly (no entity; see
+/// [`SpherePhysicsWorld::world`](crate::SpherePhysicsWorld::world)) is read from
+/// `physics.world.collisions()` after the step, as are those of a sphere despawned or disabled
+/// after the step (not told here).
 #[derive(Message, Clone, Copy, Debug, PartialEq)]
 pub struct SphereCollision {
     /// The first sphere.
@@ -50,7 +54,9 @@ pub struct SphereHit {
 
 /// A sphere left out of the simulation because a component is invalid (or because its motion
 /// would leave the finite range within a step): which entity, which field, which value.
-/// Written at `Prepare`, once each time its components are found invalid.
+/// Written at `Prepare`, once each time its components are found invalid (and again if, refused
+/// for its force's sum with gravity and tried again once the gravity changed, it is refused for
+/// another reason).
 #[derive(Message, Clone, Debug, PartialEq)]
 pub struct SphereRejected {
     /// The sphere.

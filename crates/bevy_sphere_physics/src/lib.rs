@@ -11,10 +11,12 @@
 //!
 //! What game systems may do, and what happens:
 //! - **Despawn a sphere** (or remove [`SphereBody`]): it leaves the simulation at the next fixed
-//!   step; collisions already reported stay reported. An entity kept without its
+//!   step (or at this one's `Step`, if done after its `Prepare`); collisions already reported
+//!   stay reported. An entity kept without its
 //!   `SphereBody` gets its `Transform` back: the plugin stops writing it.
 //! - **Disable a sphere** (Bevy's `Disabled`): it leaves the simulation at the next fixed step
-//!   and joins again, from where it was, once enabled. Only `Disabled` does this; a disabling
+//!   (or at this one's `Step`, if disabled after its `Prepare`) and joins again, from where it
+//!   was, once enabled. Only `Disabled` does this; a disabling
 //!   component of the game's own (`World::register_disabling_component`) is not supported: it
 //!   hides the sphere from the plugin, but its body stays in the simulation (struck, and not
 //!   reported). Despawn the sphere, or remove its `SphereBody`, to take it out.
@@ -36,10 +38,12 @@
 //! - **Invalid values** (radius ≤ 0, NaN, restitution outside `[0, 1]`, a sphere beyond its
 //!   string): the sphere is left out of the simulation, a [`SphereRejected`] message and a
 //!   warning name the entity, the field and the value, and [`RejectedSphere`] is put on it;
-//!   it joins once its components are valid. Nothing panics. A sphere whose motion would leave
-//!   the finite range within a step (1e308 m/s) is rejected the same way, and the step taken
-//!   without it. A step the core refuses for any other reason (settings out of range) is
-//!   skipped, logged and counted in [`SpherePhysicsDiagnostics::refused_steps`].
+//!   it joins once its components are valid (a sphere refused for its force's sum with gravity
+//!   is tried again when the gravity changes). Nothing panics. A sphere whose motion would
+//!   leave the finite range within a step (1e308 m/s) is rejected the same way, and the step
+//!   taken without it. A step the core refuses for any other reason (settings out of range,
+//!   such as a gravity that is not finite) is skipped, logged and counted in
+//!   [`SpherePhysicsDiagnostics::refused_steps`].
 //! - **Place a tethered sphere by its `Transform`** at its string's length: `f32` rounding that
 //!   puts it a hair outside the string is undone.
 //! - **Spawn into an occupied place**: spheres that overlap and approach are pushed apart by

@@ -307,6 +307,8 @@ pub(crate) fn prepare(
         | options.is_changed()
         | (physics.world.stats().asleep == 0);
     let physics = physics.bypass_change_detection();
+    // What a sphere is refused under (see `RejectedSphere::gravity`).
+    let gravity = physics.world.settings().gravity;
     rejected.write_batch(runaways.0.drain(..));
     remove_bodies(physics, removed.0.iter().copied());
     for entity in removed.0.drain(..) {
@@ -331,9 +333,12 @@ pub(crate) fn prepare(
             entity,
             error: Clone::clone(&error),
         });
-        commands
-            .entity(entity)
-            .try_insert(RejectedSphere { error, desc });
+        let gravity = refused_for_gravity(&desc).then_some(gravity);
+        commands.entity(entity).try_insert(RejectedSphere {
+            error,
+            desc,
+            gravity,
+        });
     };
     // New spheres by `SphereOrder`, then entity: ids never depend on query order.
     let mut new = Vec::new();
@@ -453,8 +458,11 @@ pub(crate) fn prepare(
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
         let desc = describe(&item, &options, None);
-        // Still the same invalid description: already reported.
-        if item.10.is_some_and(|r| same_desc(&r.desc, &desc)) {
+        // Still the same invalid description: already reported. Tried again if it was refused
+        // for its force's sum with the world's gravity, and the gravity changed since (reported
+        // again only if refused for another reason).
+        let refused_as = item.10.filter(|r| same_desc(&r.desc, &desc));
+        if refused_as.is_some_and(|r| r.gravity.is_none_or(|g| same_bits(g, gravity))) {
             continue;
         }
         match physics.world.add_sphere(desc.clone()) {
@@ -475,10 +483,24 @@ pub(crate) fn prepare(
                     e.try_remove::<RejectedSphere>();
                 }
             }
+            Err(error)
+                if refused_as.is_some_and(|r| {
+                    (r.error.field, r.error.reason) == (error.field, error.reason)
+                }) =>
+            {
+                commands.entity(entity).try_insert(RejectedSphere {
+                    error,
+                    desc,
+                    gravity: Some(gravity),
+                });
+            }
             Err(error) => reject(&mut commands, entity, desc, error),
         }
     }
 }
+
+/// Spheres disabled since `Step` last ran (those disabled earlier are out already).
+type JustDisabled = (With<SphereBody>, With<Disabled>, Added<Disabled>);
 
 /// [`SpherePhysicsSystems::Step`](crate::SpherePhysicsSystems::Step): one core step of the fixed
 /// timestep (integration, collision detection and response happen together inside it: the
@@ -500,6 +522,7 @@ pub(crate) fn step(
     mut last_refusal: Local<Option<String>>,
     time: Res<Time<Fixed>>,
     removed: ResMut<RemovedSpheres>,
+    disabled: Query<Entity, JustDisabled>,
 ) {
     stepped.0 = clock.take_step();
     if !stepped.0 {
@@ -511,8 +534,10 @@ pub(crate) fn step(
     // Spheres despawned (or no longer spheres) since `Prepare`, by a game system before this
     // one, are out of this step already (until the fifty-sixth session they still collided in
     // it, and the collision went unreported). `Prepare` does the rest for them, as for any
-    // sphere removed.
+    // sphere removed. So are spheres disabled since (until the sixty-first session they
+    // collided in it, unreported).
     remove_bodies(physics, removed.0.iter().copied());
+    remove_bodies(physics, disabled);
     // Each retry leaves one sphere out, so this ends; the bound only caps one step's work.
     let mut result = physics.world.step(time.delta_secs_f64()).copied();
     for _ in 0..64 {
@@ -544,6 +569,8 @@ pub(crate) fn step(
             .try_insert(RejectedSphere {
                 error: error.clone(),
                 desc: body.desc().clone(),
+                // Not tried again when gravity changes: its motion ran away, not its force.
+                gravity: None,
             });
         result = physics.world.step(time.delta_secs_f64()).copied();
     }
@@ -620,7 +647,7 @@ pub(crate) fn writeback(
         for &entity in &last {
             if let Ok((_, position, mut previous, _)) = spheres.get_mut(entity)
                 && !same_bits(previous.0, position.0)
-                && !moved_late(late, position.last_changed(), position.added())
+                && !moved_late(late, &position, previous.0)
             {
                 previous.0 = position.0;
                 wrote = true;
@@ -678,6 +705,16 @@ pub(crate) fn writeback(
     *still = !wrote;
 }
 
+/// Whether a sphere refused under the world's gravity would be taken without it: refused for
+/// its force's sum with gravity (see [`RejectedSphere::gravity`]), a refusal a change of
+/// gravity may end. (Asked of a world of its own, with the core's own checks; only when a
+/// sphere is refused.)
+fn refused_for_gravity(desc: &SphereDesc) -> bool {
+    sphere_physics::World::new(sphere_physics::Settings::default())
+        .add_sphere(desc.clone())
+        .is_ok()
+}
+
 /// Takes the bodies of `entities` (spheres despawned, or that lost their `SphereBody`) out of
 /// the world, if they are still in it, all at once (`World::remove_bodies`): removing a body
 /// moves every body after it down one place, so thousands despawned together (a level left,
@@ -696,15 +733,22 @@ fn remove_bodies(physics: &mut SpherePhysicsWorld, entities: impl IntoIterator<I
     physics.world.remove_bodies(&ids);
 }
 
-/// Whether a sphere's position was changed `late` by the game (see `writeback`), from the
-/// ticks it was changed and added at: not when `Prepare` put it there, as a sphere joined by
-/// its `Transform` or as the component came back. (`Prepare` changes a position it did not
-/// add only in its own run, not late. Until the fifty-fifth session it put the position on
-/// again with a joining sphere's handle, and took any change late in that step for its own,
-/// overwriting a game's.)
+/// Whether a sphere's `position` was changed `late` by the game (see `writeback`): not when
+/// `Prepare` put it there, as a sphere joined by its `Transform` or as the component came back,
+/// with a `previous` position the same (added late, and still where it was put). (`Prepare`
+/// changes a position it did not add only in its own run, not late. Until the fifty-fifth
+/// session it put the position on again with a joining sphere's handle, and took any change
+/// late in that step for its own, overwriting a game's; until the sixty-first it took a change
+/// late in the step of such an addition for its own. The ticks cannot tell them apart: a game
+/// system that runs just after `Prepare`'s commands are applied changes the position at the
+/// tick they added it.)
 #[inline(always)]
-fn moved_late(late: impl Fn(Tick) -> bool, changed: Tick, added: Tick) -> bool {
-    late(changed) && !late(added)
+fn moved_late(
+    late: impl Fn(Tick) -> bool,
+    position: &Mut<SpherePosition>,
+    previous: DVec3,
+) -> bool {
+    late(position.last_changed()) && (!late(position.added()) || !same_bits(position.0, previous))
 }
 
 /// What `writeback` keeps from one run to the next: the spheres whose position it wrote
@@ -744,7 +788,7 @@ fn write_sphere(
             wrote = true;
         }
     }
-    if moved_late(&late, position.last_changed(), position.added()) {
+    if moved_late(&late, &position, previous.0) {
         return (true, false);
     }
     if !compare {

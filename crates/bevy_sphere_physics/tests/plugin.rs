@@ -848,18 +848,32 @@ fn regression_a_teleport_is_shown_at_once() {
 #[derive(Resource, Default)]
 struct Doomed(Option<Entity>);
 
-/// An app whose game system despawns the [`Doomed`] sphere between the sets `after` and
-/// `before`, and gathers the collision messages into [`Seen`].
+/// Whether the [`Doomed`] sphere is disabled (Bevy's `Disabled`) rather than despawned.
+#[derive(Resource, Default)]
+struct DisableInstead(bool);
+
+/// An app whose game system despawns (or disables, see [`DisableInstead`]) the [`Doomed`]
+/// sphere between the sets `after` and `before`, and gathers the collision messages into
+/// [`Seen`].
 fn app_despawning_between(after: SpherePhysicsSystems, before: SpherePhysicsSystems) -> App {
     let mut app = app(SpherePhysicsPlugin::default());
     app.init_resource::<Seen>()
         .init_resource::<Doomed>()
+        .init_resource::<DisableInstead>()
         .add_systems(
             FixedUpdate,
             (
-                (|mut commands: Commands, mut doomed: ResMut<Doomed>| {
+                (|mut commands: Commands,
+                  mut doomed: ResMut<Doomed>,
+                  disable: Res<DisableInstead>| {
                     if let Some(e) = doomed.0.take() {
-                        commands.entity(e).despawn();
+                        if disable.0 {
+                            commands
+                                .entity(e)
+                                .insert(bevy::ecs::entity_disabling::Disabled);
+                        } else {
+                            commands.entity(e).despawn();
+                        }
                     }
                 })
                 .after(after)
@@ -979,6 +993,133 @@ fn regression_a_sphere_despawned_after_prepare_is_out_of_that_step() {
     assert_eq!(velocity(&app, b), -DVec3::X * 10.0, "b struck nothing");
     assert!(app.world().resource::<Seen>().messages.is_empty());
     assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+}
+
+/// Regression (found by review): a sphere disabled by a game system between `Prepare` and
+/// `Step` (a pool of bullets disabled rather than despawned) still collided in that step: its
+/// body was taken out only at the next `Prepare`. The other sphere bounced off it, and the
+/// collision went unreported (a disabled sphere is hidden from the plugin's queries).
+#[test]
+fn regression_a_sphere_disabled_after_prepare_is_out_of_that_step() {
+    let mut app = app_despawning_between(SpherePhysicsSystems::Prepare, SpherePhysicsSystems::Step);
+    app.insert_resource(DisableInstead(true));
+    // As above: they would meet early in the fourth step.
+    let a = ball(&mut app, DVec3::new(-1.0, 0.0, 0.0), DVec3::X * 10.0);
+    let b = ball(&mut app, DVec3::new(1.0, 0.0, 0.0), -DVec3::X * 10.0);
+    run_steps(&mut app, 3);
+    assert_eq!(velocity(&app, b), -DVec3::X * 10.0, "nothing met yet");
+    app.insert_resource(Doomed(Some(a)));
+    run_steps(&mut app, 1);
+    assert!(
+        app.world()
+            .get::<bevy::ecs::entity_disabling::Disabled>(a)
+            .is_some()
+    );
+    assert_eq!(velocity(&app, b), -DVec3::X * 10.0, "b struck nothing");
+    assert!(app.world().resource::<Seen>().messages.is_empty());
+    assert_eq!(app.world().resource::<SpherePhysicsWorld>().world.len(), 1);
+    // Where it was disabled, three steps in, moving as it was.
+    let dt = STEP.as_secs_f64();
+    assert_eq!(position(&app, a), DVec3::new(-1.0 + 30.0 * dt, 0.0, 0.0));
+    assert_eq!(velocity(&app, a), DVec3::X * 10.0);
+}
+
+/// Regression (found by review): a position a game set after `Prepare`, in the step in which
+/// a sphere placed by its `Transform` joined, was overwritten with the step's result: the
+/// `SpherePosition` that `Prepare` puts on such a sphere (by a command, applied after it ran)
+/// made every change to it in that step look like `Prepare`'s own.
+#[test]
+fn regression_a_position_set_late_is_kept_when_a_sphere_joins_by_its_transform() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let ball = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            Transform::from_xyz(1.0, 2.0, 3.0),
+            SphereVelocity(DVec3::X),
+        ))
+        .id();
+    let target = DVec3::new(0.0, 5.0, 0.0);
+    move_late(&mut app, ball, target);
+    run_steps(&mut app, 1);
+    assert!(app.world().get::<SphereHandle>(ball).is_some());
+    assert_eq!(position(&app, ball), target);
+    run_steps(&mut app, 1);
+    assert_eq!(position(&app, ball), target + DVec3::X * STEP.as_secs_f64());
+}
+
+/// Regression (found by review): a sphere refused because of the world's gravity stayed out
+/// after the game mended its gravity (it was tried again only once its components changed),
+/// and under a gravity that is not finite every sphere was refused, its force of 0 blamed.
+/// The latter is the settings' fault: the sphere is taken and the steps refused, counted,
+/// until the gravity is mended. The former is tried again once the gravity changes, and
+/// reported again only if refused for another reason.
+#[test]
+fn regression_a_sphere_refused_under_gravity_joins_once_gravity_is_mended() {
+    let mend = |app: &mut App, gravity: DVec3| {
+        let mut physics = app.world_mut().resource_mut::<SpherePhysicsWorld>();
+        physics.world.settings_mut().gravity = gravity;
+    };
+    // Gravity not finite.
+    let mut first = app(SpherePhysicsPlugin::default().gravity(DVec3::X * f64::NAN));
+    collect_rejections(&mut first);
+    let falling = ball(&mut first, DVec3::Y * 10.0, DVec3::ZERO);
+    for _ in 0..5 {
+        first.update();
+    }
+    assert!(first.world().get::<RejectedSphere>(falling).is_none());
+    assert!(first.world().resource::<Rejections>().0.is_empty());
+    assert!(first.world().get::<SphereHandle>(falling).is_some());
+    let diagnostics = first.world().resource::<SpherePhysicsDiagnostics>();
+    assert!(diagnostics.refused_steps > 0);
+    assert_eq!(diagnostics.steps, 0);
+    mend(&mut first, DVec3::NEG_Y * 8.0);
+    run_steps(&mut first, 1);
+    assert_eq!(
+        velocity(&first, falling),
+        DVec3::NEG_Y * 8.0 * STEP.as_secs_f64()
+    );
+
+    // Finite, but past the range with a light sphere's force.
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::X * 1e308));
+    collect_rejections(&mut app);
+    // Refused whatever the gravity: not tried again when it changes, nor reported again.
+    let bad = app.world_mut().spawn(SphereBody::new(-1.0)).id();
+    let density = 1e-10;
+    let mass = density * 4.0 / 3.0 * std::f64::consts::PI;
+    let light = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(1.0),
+            Density(density),
+            AppliedForce(DVec3::X * 1e308 * mass),
+            SpherePosition(DVec3::ZERO),
+        ))
+        .id();
+    run_steps(&mut app, 2);
+    let refused = app.world().get::<RejectedSphere>(light).unwrap();
+    assert_eq!(refused.error.field, Field::Force);
+    assert_eq!(
+        app.world().get::<RejectedSphere>(bad).unwrap().error.field,
+        Field::Radius
+    );
+    assert_eq!(app.world().resource::<Rejections>().0.len(), 2);
+    // A sphere joins (the next would get another id), and gravity changes to one that refuses
+    // the light sphere for the same reason: tried, not reported again.
+    ball(&mut app, DVec3::Y * 10.0, DVec3::ZERO);
+    for g in [1.5e308, 1.25e308] {
+        mend(&mut app, DVec3::X * g);
+        run_steps(&mut app, 2);
+    }
+    assert!(app.world().get::<RejectedSphere>(light).is_some());
+    assert_eq!(app.world().resource::<Rejections>().0.len(), 2);
+    // Mended: it joins.
+    mend(&mut app, DVec3::ZERO);
+    run_steps(&mut app, 2);
+    assert!(app.world().get::<RejectedSphere>(light).is_none());
+    assert!(app.world().get::<SphereHandle>(light).is_some());
+    assert!(app.world().get::<RejectedSphere>(bad).is_some());
+    assert_eq!(app.world().resource::<Rejections>().0.len(), 2);
 }
 
 /// Regression (found by review): a reset left a rejected sphere out of the new world for good

@@ -171,14 +171,16 @@ impl SphereDesc {
 
     /// [`SphereDesc::validate`], and the acceleration with the world's `gravity` finite (a
     /// force and gravity each within range may still sum past it: every step was then
-    /// refused, blaming the velocity).
+    /// refused, blaming the velocity). A gravity that is not finite is the settings' fault,
+    /// not the sphere's: [`World::step`](crate::World::step) refuses it, naming the setting
+    /// (until the sixty-first session such a world refused every sphere, blaming its force).
     pub(crate) fn validate_under(
         &self,
         gravity: DVec3,
         label: impl Fn() -> String,
     ) -> Result<(), BodyError> {
         self.validate(&label)?;
-        if !self.fixed {
+        if !self.fixed && gravity.is_finite() {
             // As `Body::acceleration` has it.
             let acceleration = gravity + self.force * (1.0 / mass_of(self.density, self.radius));
             if !acceleration.is_finite() {

@@ -287,3 +287,40 @@ fn regression_a_fixed_spheres_tether_is_ignored() {
         .at(DVec3::X * 5.0);
     assert_eq!(world.add_sphere(short).unwrap_err().field, Field::Tether);
 }
+
+/// Regression (found by review of the Bevy plugin): under a gravity that is not finite, every
+/// sphere added (or changed) was refused, its force blamed (a force of 0, "with gravity must give
+/// a finite acceleration"), so a game that mended its gravity found its spheres gone. The fault
+/// is the settings': the sphere is taken, and the step refused, naming gravity, until mended.
+#[test]
+fn regression_a_sphere_added_under_gravity_not_finite_is_not_blamed() {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, f64::NAN, 0.0)));
+    let ball = world
+        .add_sphere(SphereDesc::new(0.5).at(DVec3::Y * 10.0))
+        .unwrap();
+    world.set_force(ball, DVec3::X).unwrap();
+    world.set_velocity(ball, DVec3::X).unwrap();
+    match world.step(1.0 / 64.0) {
+        Err(WorldError::InvalidSetting { field, .. }) => assert_eq!(field, "gravity"),
+        other => panic!("expected gravity refused, got {other:?}"),
+    }
+    assert_eq!(world.steps(), 0);
+    // Mended: the sphere falls from where it was put, pushed by its force.
+    world.settings_mut().gravity = DVec3::NEG_Y * 8.0;
+    world.step(1.0 / 64.0).unwrap();
+    let body = world.body(ball).unwrap();
+    let mass = body.mass();
+    let expected = DVec3::new(1.0 + 1.0 / mass / 64.0, -8.0 / 64.0, 0.0);
+    assert!(
+        (body.velocity() - expected).length() < 1e-12,
+        "{}",
+        body.velocity()
+    );
+    // A finite gravity still blames a force whose sum with it overflows.
+    world.settings_mut().gravity = DVec3::X * 1e308;
+    let error = world.set_force(ball, DVec3::X * 1e308 * mass).unwrap_err();
+    assert!(
+        matches!(&error, WorldError::Body(e) if e.field == Field::Force),
+        "{error}"
+    );
+}

@@ -524,20 +524,21 @@ pub(crate) fn step(
     removed: ResMut<RemovedSpheres>,
     disabled: Query<Entity, JustDisabled>,
 ) {
-    stepped.0 = clock.take_step();
-    if !stepped.0 {
-        return;
-    }
-    let started = Instant::now();
     // The plugin's own change: not one `Prepare` must look at every sphere for.
     let physics = physics.bypass_change_detection();
     // Spheres despawned (or no longer spheres) since `Prepare`, by a game system before this
     // one, are out of this step already (until the fifty-sixth session they still collided in
     // it, and the collision went unreported). `Prepare` does the rest for them, as for any
     // sphere removed. So are spheres disabled since (until the sixty-first session they
-    // collided in it, unreported).
+    // collided in it, unreported). Taken out while paused too, so that no body is left to an
+    // entity gone or disabled.
     remove_bodies(physics, removed.0.iter().copied());
     remove_bodies(physics, disabled);
+    stepped.0 = clock.take_step();
+    if !stepped.0 {
+        return;
+    }
+    let started = Instant::now();
     // Each retry leaves one sphere out, so this ends; the bound only caps one step's work.
     let mut result = physics.world.step(time.delta_secs_f64()).copied();
     for _ in 0..64 {

@@ -1,6 +1,8 @@
 //! What a game may do to its spheres, done at random between frames: spawn and despawn them,
 //! change, add and remove their components (good values and bad), disable them, pause, single
-//! step, reset the simulation with new settings (sleeping on or off). Nothing may panic; after
+//! step, reset the simulation with new settings (sleeping on or off); and the same, but for
+//! teleports, by a game system that runs between `Prepare` and `Step` (one in `FixedUpdate`
+//! with no order against the plugin's sets may run there). Nothing may panic; after
 //! every frame each body in the core belongs to a live, enabled, unrejected sphere entity and
 //! each such entity has its body, positions and transforms are finite, the diagnostics count
 //! what the core holds, and the same frames give the same spheres, bit for bit. (Despawning a
@@ -114,11 +116,10 @@ fn spawn_scene(app: &mut App, rng: &mut Rng) {
 }
 
 /// The sphere entities, in entity order.
-fn spheres(app: &mut App) -> Vec<Entity> {
-    let mut all: Vec<Entity> = app
-        .world_mut()
+fn spheres(world: &mut World) -> Vec<Entity> {
+    let mut all: Vec<Entity> = world
         .query_filtered::<Entity, (With<SphereBody>, Allow<Disabled>)>()
-        .iter(app.world())
+        .iter(world)
         .collect();
     all.sort();
     all
@@ -143,11 +144,12 @@ fn toggle<C: Component + Default>(entity: &mut EntityWorldMut) {
     }
 }
 
-/// One random thing a game does between frames.
-fn change(app: &mut App, rng: &mut Rng) {
-    let all = spheres(app);
+/// One random thing a game does between frames, or (`mid_step`) between `Prepare` and `Step`:
+/// there, not a teleport (a position set after `Prepare` is kept for the next step, so the
+/// sphere's component and its body differ until then, as `check` does not allow).
+fn change(world: &mut World, rng: &mut Rng, mid_step: bool) {
+    let all = spheres(world);
     let target = (!all.is_empty()).then(|| all[rng.below(all.len() as u64) as usize]);
-    let world = app.world_mut();
     match (rng.below(20), target) {
         (0..=3, _) => {
             let at = DVec3::new(
@@ -181,7 +183,7 @@ fn change(app: &mut App, rng: &mut Rng) {
                 v.0 = rng.maybe_bad_vector(3.0);
             }
         }
-        (7, Some(e)) => {
+        (7, Some(e)) if !mid_step => {
             let at = rng.maybe_bad_vector(0.2) + DVec3::Y * 0.5;
             world.entity_mut(e).insert(SpherePosition(at));
         }
@@ -249,9 +251,13 @@ fn change(app: &mut App, rng: &mut Rng) {
     }
 }
 
+/// A sphere's state as a frame left it: its entity, position and velocity, to the bit (a
+/// velocity set to NaN after `Prepare` stays on its sphere until the next step rejects it).
+type State = (Entity, [u64; 3], [u64; 3]);
+
 /// The state after a frame, checked.
-fn check(app: &mut App) -> Vec<(Entity, DVec3, DVec3)> {
-    let all = spheres(app);
+fn check(app: &mut App) -> Vec<State> {
+    let all = spheres(app.world_mut());
     let physics = app.world().resource::<SpherePhysicsWorld>();
     for body in physics.world.bodies() {
         let entity = physics
@@ -284,7 +290,11 @@ fn check(app: &mut App) -> Vec<(Entity, DVec3, DVec3)> {
         let at = e.get::<SpherePosition>().unwrap().0;
         assert_eq!(at, in_core.position(), "{entity}");
         let v = e.get::<SphereVelocity>().map_or(DVec3::ZERO, |v| v.0);
-        state.push((entity, at, v));
+        state.push((
+            entity,
+            at.to_array().map(f64::to_bits),
+            v.to_array().map(f64::to_bits),
+        ));
     }
     state
 }
@@ -313,10 +323,30 @@ fn spawn_bed(app: &mut App) {
     }
 }
 
-fn play(seed: u64, frames: u32) -> Vec<Vec<(Entity, DVec3, DVec3)>> {
+/// The random stream of the game system that changes spheres between `Prepare` and `Step`.
+#[derive(Resource)]
+struct MidStep(Rng);
+
+/// Now and then (one fixed step in forty) a random change between `Prepare` and `Step`.
+fn change_mid_step(world: &mut World) {
+    let mut rng = std::mem::replace(&mut world.resource_mut::<MidStep>().0, Rng(1));
+    if rng.chance(1.0 / 40.0) {
+        change(world, &mut rng, true);
+    }
+    world.resource_mut::<MidStep>().0 = rng;
+}
+
+fn play(seed: u64, frames: u32) -> Vec<Vec<State>> {
     let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let sleep = rng.chance(0.6);
     let mut app = app(sleep);
+    app.insert_resource(MidStep(Rng(rng.next() | 1)))
+        .add_systems(
+            FixedUpdate,
+            change_mid_step
+                .after(SpherePhysicsSystems::Prepare)
+                .before(SpherePhysicsSystems::Step),
+        );
     spawn_scene(&mut app, &mut rng);
     if sleep {
         spawn_bed(&mut app);
@@ -325,7 +355,7 @@ fn play(seed: u64, frames: u32) -> Vec<Vec<(Entity, DVec3, DVec3)>> {
     for _ in 0..frames {
         // A change every third frame or so, to let the spheres settle (and fall asleep).
         if rng.chance(0.35) {
-            change(&mut app, &mut rng);
+            change(app.world_mut(), &mut rng, false);
         }
         let mut clock = app.world_mut().resource_mut::<SpherePhysicsClock>();
         if clock.paused && rng.chance(0.2) {

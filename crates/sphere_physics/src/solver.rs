@@ -1576,6 +1576,16 @@ impl Solver {
             if moved > 0 {
                 stats.separated = stats.separated.saturating_add(moved);
                 max_overlap = self.deepest_tested(dt);
+                if !self.nothing_accelerates {
+                    // Summed again where the bodies now are (in `write_back` before they were
+                    // moved, until the sixty-first session). Nothing accelerating, it is 0
+                    // wherever they are.
+                    stats.potential_energy = bodies
+                        .iter()
+                        .filter(|b| !b.is_fixed())
+                        .map(|b| crate::world::potential_of(b, ctx.settings))
+                        .sum();
+                }
             }
         }
         stats.max_overlap = max_overlap;

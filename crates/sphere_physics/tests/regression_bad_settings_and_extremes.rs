@@ -324,3 +324,32 @@ fn regression_a_sphere_added_under_gravity_not_finite_is_not_blamed() {
         "{error}"
     );
 }
+
+/// Regression (found by review of the core's documentation): a step refused because a sphere
+/// would leave the finite range gave the sphere's speed as the offending value, where
+/// `BodyError::value` is one component of a vector; past about 1.3e154 m/s the speed itself
+/// overflowed, and the error said "got inf" of a finite velocity. It gives the fastest
+/// component.
+#[test]
+fn regression_a_refused_step_names_a_component_of_the_velocity() {
+    for (velocity, fastest) in [
+        (DVec3::new(3.0, -4.0, 0.0), -4.0),
+        (DVec3::new(3e200, 4e200, 0.0), 4e200),
+    ] {
+        let mut world = World::new(Settings::default());
+        world
+            .add_sphere(
+                SphereDesc::new(1.0)
+                    .at(DVec3::new(1.7e308, -1.7e308, 0.0))
+                    .moving(velocity),
+            )
+            .unwrap();
+        match world.step(1e308) {
+            Err(WorldError::Body(error)) => {
+                assert_eq!(error.field, Field::Velocity);
+                assert_eq!(error.value, fastest, "{error}");
+            }
+            other => panic!("{velocity}: expected an error, got {other:?}"),
+        }
+    }
+}

@@ -165,7 +165,8 @@ pub(crate) fn apply_actions(
 /// `screenshot PATH` on standard output (or the error on standard error).
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct Autopilot {
-    /// Take a screenshot once the simulated time reaches this many seconds.
+    /// Take a screenshot once the simulated time of the scene reaches this many seconds (with
+    /// no scene loaded: at once if `exit_after_screenshot`, else once one is).
     pub screenshot_at: Option<f64>,
     /// Quit after that screenshot was saved (exit code 0) or failed (exit code 1).
     pub exit_after_screenshot: bool,
@@ -201,10 +202,16 @@ pub(crate) fn autopilot(
     *frames += 1;
     let outcomes = status.saved + status.failed;
     let Some(before) = pilot.requested else {
-        // A few frames first, so the window and the panels have been drawn; without a scene
-        // the time stays 0 and the chooser is captured.
+        // A few frames first, so the window and the panels have been drawn. Without a scene,
+        // an unattended run (`--exit`) captures the chooser at once (its time stays 0); one
+        // run by hand waits for the scene the user chooses (until the sixty-first session it
+        // captured the chooser, and took no picture in the scene chosen after).
         let ready = ready.is_none_or(|r| r.settled());
-        let due = shown.0 >= at || *state.get() == ActiveScene::None;
+        let due = if *state.get() == ActiveScene::None {
+            pilot.exit_after_screenshot
+        } else {
+            shown.0 >= at
+        };
         if ready && *frames > 3 && due {
             pilot.requested = Some(outcomes);
             actions.write(LabAction::Screenshot);

@@ -265,8 +265,10 @@ fn open_start_scene(
                     )
                 }
             };
-            if pilot.screenshot_at.is_some() {
-                // Unattended: a screenshot of the chooser would pass for the scene's.
+            if pilot.screenshot_at.is_some() && pilot.exit_after_screenshot {
+                // Unattended: a screenshot of the chooser would pass for the scene's. (Run by
+                // hand, the screenshot waits for the scene chosen; until the sixty-first session
+                // `--screenshot-at` without `--exit` quit here too.)
                 eprintln!("{error}");
                 exit.write(AppExit::from_code(2));
             } else {

@@ -4,8 +4,9 @@
 //! zoom with the wheel or `-`/`=` (keypad `-`/`+`).
 //!
 //! Flags: `--scene ID` opens a scene directly, `--screenshot-dir DIR` (default `screenshots/`),
-//! `--screenshot-at SECONDS` takes a screenshot once the simulated time reaches it, `--exit`
-//! quits after that screenshot.
+//! `--screenshot-at SECONDS` takes a screenshot once the simulated time of the scene reaches it
+//! (without `--exit`, waiting for a scene to be chosen), `--exit` quits after that screenshot
+//! (with no scene, it captures the chooser).
 
 fn main() -> bevy::app::AppExit {
     sphere_lab::lab_app(None).run()

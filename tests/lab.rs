@@ -478,6 +478,45 @@ fn regression_an_unattended_run_with_an_unknown_scene_exits_with_code_2() {
     assert_eq!(app.should_exit(), Some(AppExit::from_code(2)));
 }
 
+/// Regression (found by review): `--screenshot-at` without `--exit` (a run by hand) and with no
+/// scene captured the chooser at once, stamped 0, and took no picture in the scene the user
+/// then chose; with an unknown `--scene` it quit with code 2 instead of opening the chooser. It
+/// waits for a scene, and takes its picture once the scene's time reaches the mark.
+#[test]
+fn regression_a_screenshot_at_run_by_hand_waits_for_a_scene() {
+    for start in [None, Some("gas_bx")] {
+        let mut app = lab(LabPlugin {
+            scene_folder: Some(scene_folder()),
+            start: start.map(str::to_owned),
+            autopilot: Autopilot::new(Some(0.1), false),
+            ..default()
+        });
+        let mut cursor = app
+            .world()
+            .resource::<Messages<ScreenshotRequested>>()
+            .get_cursor_current();
+        let mut requests = Vec::new();
+        let mut run = |app: &mut App, frames: u32, requests: &mut Vec<ScreenshotRequested>| {
+            for _ in 0..frames {
+                app.update();
+                let messages = app.world().resource::<Messages<ScreenshotRequested>>();
+                requests.extend(cursor.read(messages).copied());
+            }
+        };
+        run(&mut app, 20, &mut requests);
+        assert_eq!(app.should_exit(), None, "{start:?}");
+        assert_eq!(state(&app), ActiveScene::None, "{start:?}");
+        assert!(requests.is_empty(), "{start:?}: {requests:?}");
+        // The user chooses a scene: its picture is taken once its time passes the mark.
+        app.world_mut()
+            .write_message(LabAction::Load("two_spheres".into()));
+        run(&mut app, 30, &mut requests);
+        assert_eq!(requests.len(), 1, "{start:?}: {requests:?}");
+        assert!(requests[0].time >= 0.1, "{start:?}: {requests:?}");
+        assert_eq!(app.should_exit(), None, "{start:?}");
+    }
+}
+
 /// Regression (found by review): a scene loaded (or restarted) while paused opened frozen.
 #[test]
 fn regression_a_scene_loaded_while_paused_starts_running() {

@@ -218,6 +218,9 @@ impl SceneDesc {
         // Text that is not UTF-8 is placed too: the line and column of its first bad byte.
         let text = std::str::from_utf8(&bytes).map_err(|error| {
             let good = &bytes[..error.valid_up_to()];
+            // After a byte-order mark, as `from_ron` counts (until the sixty-first session the
+            // mark was counted here, a column too many on the first line).
+            let good = good.strip_prefix("\u{feff}".as_bytes()).unwrap_or(good);
             let line_start = good.iter().rposition(|&b| b == b'\n').map_or(0, |n| n + 1);
             let column = String::from_utf8_lossy(&good[line_start..]).chars().count() + 1;
             SceneError::Parse {

@@ -34,3 +34,21 @@ fn regression_a_file_that_is_not_utf8_says_where() {
         Some("café")
     );
 }
+
+/// Regression (found by review of the core's documentation): after a byte-order mark, which
+/// `from_ron` skips before counting lines and columns, the place of a byte that is not UTF-8
+/// on the first line counted the mark as a character (a column too many).
+#[test]
+fn regression_a_byte_order_mark_is_not_counted_before_a_bad_byte() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("scene_not_utf8_bom");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.ron");
+    let mut bytes = "\u{feff}(name: \"caf".as_bytes().to_vec();
+    bytes.push(0xe9);
+    bytes.extend_from_slice(b"\")");
+    std::fs::write(&path, &bytes).unwrap();
+    match SceneDesc::load(&path) {
+        Err(SceneError::Parse { line, column, .. }) => assert_eq!((line, column), (1, 12)),
+        other => panic!("{other:?}"),
+    }
+}

@@ -162,11 +162,13 @@ pub struct NoInterpolation;
 pub struct RejectedSphere {
     /// What is wrong.
     pub error: BodyError,
-    /// The description that was refused (tried again only once it changes).
+    /// The description that was refused (tried again only once it changes, or, if `gravity`
+    /// is set, once the world's gravity does).
     pub(crate) desc: sphere_physics::SphereDesc,
     /// The world's gravity when it was refused, if the refusal was its (the sphere would be
-    /// taken without gravity): tried again once it changes. (Until the sixty-first session a
-    /// sphere refused under a gravity the game then mended stayed out.)
+    /// taken without gravity, and is not under this one): tried again once it changes. (Until
+    /// the sixty-first session a sphere refused under a gravity the game then mended stayed
+    /// out.)
     pub(crate) gravity: Option<bevy::math::DVec3>,
 }
 

@@ -11,12 +11,12 @@
 //!
 //! What game systems may do, and what happens:
 //! - **Despawn a sphere** (or remove [`SphereBody`]): it leaves the simulation at the next fixed
-//!   step (or at this one's `Step`, if done after its `Prepare`); collisions already reported
-//!   stay reported. An entity kept without its
-//!   `SphereBody` gets its `Transform` back: the plugin stops writing it.
+//!   step (or at this one's `Step`, if done between its `Prepare` and `Step`); collisions
+//!   already reported stay reported. An entity kept without its `SphereBody` gets its
+//!   `Transform` back: the plugin stops writing it.
 //! - **Disable a sphere** (Bevy's `Disabled`): it leaves the simulation at the next fixed step
-//!   (or at this one's `Step`, if disabled after its `Prepare`) and joins again, from where it
-//!   was, once enabled. Only `Disabled` does this; a disabling
+//!   (or at this one's `Step`, if disabled between its `Prepare` and `Step`) and joins again,
+//!   from where it was, once enabled. Only `Disabled` does this; a disabling
 //!   component of the game's own (`World::register_disabling_component`) is not supported: it
 //!   hides the sphere from the plugin, but its body stays in the simulation (struck, and not
 //!   reported). Despawn the sphere, or remove its `SphereBody`, to take it out.
@@ -31,7 +31,9 @@
 //!   that ran after `Prepare` in the same fixed step (a system in `FixedUpdate` with no order
 //!   against the plugin's sets may) is kept, not overwritten with the step's result, and applied at
 //!   the next step; order such a system `.before(SpherePhysicsSystems::Prepare)` to have it applied
-//!   in the step it runs in.
+//!   in the step it runs in. (One exception: in the step in which a sphere placed by its
+//!   `Transform` joins, a position set after `Prepare` to exactly where it joined is taken for
+//!   the plugin's own, and overwritten.)
 //! - **Parent a sphere**: don't. The plugin reads and writes a sphere's `Transform` as its
 //!   place in the world, so a sphere must be a root entity, or the child of one at the origin,
 //!   neither rotated nor scaled.

@@ -333,7 +333,7 @@ pub(crate) fn prepare(
             entity,
             error: Clone::clone(&error),
         });
-        let gravity = refused_for_gravity(&desc).then_some(gravity);
+        let gravity = refused_for_gravity(&desc, gravity).then_some(gravity);
         commands.entity(entity).try_insert(RejectedSphere {
             error,
             desc,
@@ -559,6 +559,7 @@ pub(crate) fn step(
             continue;
         };
         physics.bodies.remove(&entity);
+        let gravity_now = physics.world.settings().gravity;
         warn!("sphere {entity} left out of the simulation: {error}");
         runaways.0.push(SphereRejected {
             entity,
@@ -570,8 +571,10 @@ pub(crate) fn step(
             .try_insert(RejectedSphere {
                 error: error.clone(),
                 desc: body.desc().clone(),
-                // Not tried again when gravity changes: its motion ran away, not its force.
-                gravity: None,
+                // Tried again when gravity changes only if its force's sum with this gravity
+                // is what ran away (a gravity the game set since it joined): else its motion
+                // did, and its components must change.
+                gravity: refused_for_gravity(body.desc(), gravity_now).then_some(gravity_now),
             });
         result = physics.world.step(time.delta_secs_f64()).copied();
     }
@@ -706,14 +709,16 @@ pub(crate) fn writeback(
     *still = !wrote;
 }
 
-/// Whether a sphere refused under the world's gravity would be taken without it: refused for
-/// its force's sum with gravity (see [`RejectedSphere::gravity`]), a refusal a change of
-/// gravity may end. (Asked of a world of its own, with the core's own checks; only when a
-/// sphere is refused.)
-fn refused_for_gravity(desc: &SphereDesc) -> bool {
-    sphere_physics::World::new(sphere_physics::Settings::default())
-        .add_sphere(desc.clone())
-        .is_ok()
+/// Whether a sphere is refused under `gravity` for its force's sum with it, and would be taken
+/// without gravity (see [`RejectedSphere::gravity`]): a refusal a change of gravity may end.
+/// (Asked of worlds of its own, with the core's own checks; only when a sphere is refused.)
+fn refused_for_gravity(desc: &SphereDesc, gravity: DVec3) -> bool {
+    let takes = |gravity| {
+        sphere_physics::World::new(sphere_physics::Settings::with_gravity(gravity))
+            .add_sphere(desc.clone())
+            .is_ok()
+    };
+    !takes(gravity) && takes(DVec3::ZERO)
 }
 
 /// Takes the bodies of `entities` (spheres despawned, or that lost their `SphereBody`) out of
@@ -742,7 +747,8 @@ fn remove_bodies(physics: &mut SpherePhysicsWorld, entities: impl IntoIterator<I
 /// late in that step for its own, overwriting a game's; until the sixty-first it took a change
 /// late in the step of such an addition for its own. The ticks cannot tell them apart: a game
 /// system that runs just after `Prepare`'s commands are applied changes the position at the
-/// tick they added it.)
+/// tick they added it; so a position the game sets to exactly where the sphere joined is
+/// taken for `Prepare`'s, and overwritten.)
 #[inline(always)]
 fn moved_late(
     late: impl Fn(Tick) -> bool,

@@ -1120,6 +1120,52 @@ fn regression_a_sphere_refused_under_gravity_joins_once_gravity_is_mended() {
     assert!(app.world().get::<SphereHandle>(light).is_some());
     assert!(app.world().get::<RejectedSphere>(bad).is_some());
     assert_eq!(app.world().resource::<Rejections>().0.len(), 2);
+
+    // In the simulation when the game sets a gravity its force's sum with overflows: the step
+    // refuses it (a runaway), and it is tried again once the gravity is mended.
+    let mut third = crate::app(SpherePhysicsPlugin::default());
+    let light = third
+        .world_mut()
+        .spawn((
+            SphereBody::new(1.0),
+            Density(density),
+            AppliedForce(DVec3::X * 1e308 * mass),
+            SpherePosition(DVec3::ZERO),
+        ))
+        .id();
+    run_steps(&mut third, 1);
+    assert!(third.world().get::<SphereHandle>(light).is_some());
+    mend(&mut third, DVec3::X * 1e308);
+    run_steps(&mut third, 2);
+    assert!(third.world().get::<RejectedSphere>(light).is_some());
+    mend(&mut third, DVec3::ZERO);
+    run_steps(&mut third, 2);
+    assert!(third.world().get::<RejectedSphere>(light).is_none());
+    assert!(third.world().get::<SphereHandle>(light).is_some());
+}
+
+/// Regression (found by the random changes test, with changes made between `Prepare` and
+/// `Step`): a sphere despawned or disabled there while the physics was paused stayed in the
+/// core's world until the next fixed step's `Prepare` (`Step` returned before taking it out).
+#[test]
+fn regression_a_sphere_taken_out_after_prepare_while_paused_leaves_at_once() {
+    for disable in [false, true] {
+        let mut app =
+            app_despawning_between(SpherePhysicsSystems::Prepare, SpherePhysicsSystems::Step);
+        app.insert_resource(DisableInstead(disable));
+        let a = ball(&mut app, DVec3::new(-1.0, 0.0, 0.0), DVec3::X);
+        ball(&mut app, DVec3::new(1.0, 0.0, 0.0), -DVec3::X);
+        run_steps(&mut app, 1);
+        app.world_mut().resource_mut::<SpherePhysicsClock>().paused = true;
+        app.insert_resource(Doomed(Some(a)));
+        app.update();
+        assert!(
+            app.world().resource::<Doomed>().0.is_none(),
+            "disable {disable}"
+        );
+        let physics = app.world().resource::<SpherePhysicsWorld>();
+        assert_eq!(physics.world.len(), 1, "disable {disable}");
+    }
 }
 
 /// Regression (found by review): a reset left a rejected sphere out of the new world for good

@@ -1085,17 +1085,20 @@ fn regression_a_sphere_refused_under_gravity_joins_once_gravity_is_mended() {
     collect_rejections(&mut app);
     // Refused whatever the gravity: not tried again when it changes, nor reported again.
     let bad = app.world_mut().spawn(SphereBody::new(-1.0)).id();
-    let density = 1e-10;
-    let mass = density * 4.0 / 3.0 * std::f64::consts::PI;
-    let light = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(1.0),
-            Density(density),
-            AppliedForce(DVec3::X * 1e308 * mass),
-            SpherePosition(DVec3::ZERO),
-        ))
-        .id();
+    // A sphere of 4.2e-10 kg pushed at 1e308 m/s².
+    let spawn_light = |app: &mut App| {
+        let density = 1e-10;
+        let mass = density * 4.0 / 3.0 * std::f64::consts::PI;
+        app.world_mut()
+            .spawn((
+                SphereBody::new(1.0),
+                Density(density),
+                AppliedForce(DVec3::X * 1e308 * mass),
+                SpherePosition(DVec3::ZERO),
+            ))
+            .id()
+    };
+    let light = spawn_light(&mut app);
     run_steps(&mut app, 2);
     let refused = app.world().get::<RejectedSphere>(light).unwrap();
     assert_eq!(refused.error.field, Field::Force);
@@ -1124,15 +1127,7 @@ fn regression_a_sphere_refused_under_gravity_joins_once_gravity_is_mended() {
     // In the simulation when the game sets a gravity its force's sum with overflows: the step
     // refuses it (a runaway), and it is tried again once the gravity is mended.
     let mut third = crate::app(SpherePhysicsPlugin::default());
-    let light = third
-        .world_mut()
-        .spawn((
-            SphereBody::new(1.0),
-            Density(density),
-            AppliedForce(DVec3::X * 1e308 * mass),
-            SpherePosition(DVec3::ZERO),
-        ))
-        .id();
+    let light = spawn_light(&mut third);
     run_steps(&mut third, 1);
     assert!(third.world().get::<SphereHandle>(light).is_some());
     mend(&mut third, DVec3::X * 1e308);

@@ -14,11 +14,10 @@ use sphere_physics::BodyError;
 /// [`Restitution`] it takes the plugin's ([`SpherePhysicsPlugin::restitution`](crate::SpherePhysicsPlugin::restitution),
 /// 1 unless set, or a [`ResetSpherePhysics`](crate::ResetSpherePhysics)'s).
 ///
-/// The sphere starts where its [`SpherePosition`] says if one is spawned with it, else at its
-/// `Transform`'s translation, read as its place in the world (the plugin writes it back so):
-/// a sphere must be a root entity, or the child of one at the origin, neither rotated nor
-/// scaled. Changing `radius` later re-validates the body; see the crate docs
-/// for what changes mid-simulation do.
+/// The sphere starts where its [`SpherePosition`] says if one is spawned with it (a place in
+/// the world), else where its `Transform` puts it in the world (through its parent's, if it
+/// is a child). Changing `radius` later re-validates the body; see the crate docs for what
+/// changes mid-simulation do, and for spheres that are children of other entities.
 #[derive(Component, Reflect, Clone, Copy, Debug, PartialEq)]
 #[reflect(Component)]
 #[require(
@@ -42,8 +41,9 @@ impl SphereBody {
 
 /// Where the sphere's centre is in the physics world (`f64`). Written by the plugin every step;
 /// writing it from a game system teleports the sphere. Inserting it (at spawn, say) also moves
-/// the entity's `Transform` there at once, so the sphere is drawn where it is before its first
-/// step (and where it was put if it is rejected).
+/// the entity's `Transform` there at once (through its parent's frame, if it is a child), so
+/// the sphere is drawn where it is before its first step (and where it was put if it is
+/// rejected).
 #[derive(Component, Reflect, Clone, Copy, Debug, Default, PartialEq, Deref, DerefMut)]
 #[reflect(Component)]
 #[component(on_insert = SpherePosition::show)]
@@ -55,11 +55,24 @@ impl SpherePosition {
         let Some(&SpherePosition(at)) = world.get::<SpherePosition>(context.entity) else {
             return;
         };
-        if let Some(mut transform) = world.get_mut::<Transform>(context.entity) {
-            let at = translation(at);
-            if transform.translation != at {
-                transform.translation = at;
+        // A child's `Transform` is relative to its parent (see `crate::hierarchy`).
+        let at = match world.get::<ChildOf>(context.entity) {
+            Some(child_of) => {
+                let frame = crate::hierarchy::frame_of(child_of.parent(), |e| {
+                    let transform = *world.get::<Transform>(e)?;
+                    Some((transform, world.get::<ChildOf>(e).map(ChildOf::parent)))
+                });
+                match crate::hierarchy::local_translation(&frame, at) {
+                    Some(local) => local,
+                    None => return,
+                }
             }
+            None => translation(at),
+        };
+        if let Some(mut transform) = world.get_mut::<Transform>(context.entity)
+            && transform.translation != at
+        {
+            transform.translation = at;
         }
     }
 }

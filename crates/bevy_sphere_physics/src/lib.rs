@@ -34,9 +34,15 @@
 //!   in the step it runs in. (One exception: in the step in which a sphere placed by its
 //!   `Transform` joins, a position set after `Prepare` to exactly where it joined is taken for
 //!   the plugin's own, and overwritten.)
-//! - **Parent a sphere**: don't. The plugin reads and writes a sphere's `Transform` as its
-//!   place in the world, so a sphere must be a root entity, or the child of one at the origin,
-//!   neither rotated nor scaled.
+//! - **Parent a sphere** (Bevy's `ChildOf`): it is simulated at its place in the world, and
+//!   its `Transform` is written relative to its parent, so it is drawn there whatever the
+//!   parent's translation, rotation and scale. A sphere placed by its `Transform` joins where
+//!   that puts it through its ancestors' `Transform`s as they are then. The parent does not
+//!   carry it: moving the parent moves no sphere (spheres have no joints), and the sphere's
+//!   `Transform` is written again in `PostUpdate`, before Bevy propagates transforms, through
+//!   the parent's frame as the game left it. A parent's scale scales the mesh drawn, not the
+//!   sphere's radius; under a parent scaled to zero (no inverse) the sphere's `Transform` is
+//!   left as it is.
 //! - **Invalid values** (radius ≤ 0, NaN, restitution outside `[0, 1]`, a sphere beyond its
 //!   string): the sphere is left out of the simulation, a [`SphereRejected`] message and a
 //!   warning name the entity, the field and the value, and [`RejectedSphere`] is put on it;
@@ -66,6 +72,7 @@
 
 pub mod components;
 pub mod events;
+mod hierarchy;
 mod plugin;
 pub mod resources;
 mod systems;

@@ -31,11 +31,14 @@ pub enum SpherePhysicsSystems {
     Notify,
 }
 
-/// The plugin's one system outside [`FixedUpdate`]: after the fixed steps of every frame (in
-/// [`RunFixedMainLoopSystems::AfterFixedMainLoop`]) it sets each sphere's `Transform` between
+/// The plugin's system after the fixed steps of every frame (in
+/// [`RunFixedMainLoopSystems::AfterFixedMainLoop`]): it sets each sphere's `Transform` between
 /// its last two physics positions and updates [`SphereShownTime`]. A game system there that
 /// also writes `Transform`s or reads the spheres' (a camera following a sphere, say) goes
-/// `.after(SphereInterpolation)`.
+/// `.after(SphereInterpolation)`. (The plugin's one other system outside [`FixedUpdate`]
+/// writes again, in `PostUpdate` before `TransformSystems::Propagate`, the `Transform`s of
+/// spheres that are children of other entities, through their parents as `Update` left
+/// them.)
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct SphereInterpolation;
 
@@ -187,6 +190,10 @@ impl Plugin for SpherePhysicsPlugin {
             .add_systems(
                 RunFixedMainLoop,
                 systems::interpolate.in_set(SphereInterpolation),
+            )
+            .add_systems(
+                PostUpdate,
+                systems::place_children.before(bevy::transform::TransformSystems::Propagate),
             );
     }
 }

@@ -12,6 +12,7 @@ use sphere_physics::{Body, BodyId, SphereDesc, Tether, WorldError};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereHit, SphereRejected};
+use crate::hierarchy::{Places, frame_of, local_translation};
 use crate::resources::{
     SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld, SphereShownTime,
 };
@@ -140,7 +141,12 @@ type SphereQuery<'a> = (
 /// The description `item`'s components give. A body's state (its position and velocity) whose
 /// component is missing keeps `current`'s value (none yet: the origin, at rest): that state is
 /// the plugin's output, and a game that removes the component has not asked for it to change.
-fn describe(item: &SphereQueryItem, options: &PluginOptions, current: Option<&Body>) -> SphereDesc {
+fn describe(
+    item: &SphereQueryItem,
+    options: &PluginOptions,
+    current: Option<&Body>,
+    places: &Places,
+) -> SphereDesc {
     let (
         entity,
         body,
@@ -165,7 +171,7 @@ fn describe(item: &SphereQueryItem, options: &PluginOptions, current: Option<&Bo
     let position = match (position, current, transform) {
         (Some(p), _, _) => p.0,
         (None, Some(body), _) => body.position(),
-        (None, None, Some(transform)) => on_string(transform.translation.as_dvec3(), tether),
+        (None, None, Some(transform)) => on_string(places.place(*entity, transform), tether),
         (None, None, None) => DVec3::ZERO,
     };
     SphereDesc {
@@ -293,6 +299,7 @@ pub(crate) fn prepare(
     disabled: Query<Entity, (With<SphereBody>, With<Disabled>)>,
     mut runaways: ResMut<RunawaySpheres>,
     mut prepared: ResMut<PreparedAt>,
+    places: Places,
     ticks: SystemChangeTick,
 ) {
     prepared.0 = ticks.this_run();
@@ -411,7 +418,7 @@ pub(crate) fn prepare(
                     };
                     // Where a removed `SpherePosition` is put back (above): what a retry reads.
                     let put_back = item.3.is_none().then(|| body.position());
-                    let desc = describe(&item, &options, Some(body));
+                    let desc = describe(&item, &options, Some(body), &places);
                     if let Err(error) = physics.world.set_desc(id, desc.clone()) {
                         physics.world.remove_body(id);
                         physics.bodies.remove(&entity);
@@ -421,7 +428,7 @@ pub(crate) fn prepare(
                             // Kept as the retry below describes it (with no body to take a
                             // missing state from, and the position put back), so that only a
                             // change of its components retries it.
-                            let mut retried = describe(&item, &options, None);
+                            let mut retried = describe(&item, &options, None, &places);
                             if let Some(position) = put_back {
                                 retried.position = position;
                             }
@@ -457,7 +464,7 @@ pub(crate) fn prepare(
     new.dedup();
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
-        let desc = describe(&item, &options, None);
+        let desc = describe(&item, &options, None, &places);
         // Still the same invalid description: already reported. Tried again if it was refused
         // for its force's sum with the world's gravity, and the gravity changed since (reported
         // again only if refused for another reason).
@@ -894,6 +901,107 @@ type ShownSphere = (
     Has<NoInterpolation>,
 );
 
+/// The spheres shown, those that are children of another entity apart (each sphere's
+/// `Transform` is written through its parent's frame, read from the `Transform`s of its
+/// ancestors, the third query).
+type ShownSpheres<'w, 's> = ParamSet<
+    'w,
+    's,
+    (
+        Query<'static, 'static, ShownSphere, (Shown, Without<ChildOf>)>,
+        Query<'static, 'static, (Entity, ShownSphere, &'static ChildOf), Shown>,
+        Query<'static, 'static, (&'static Transform, Option<&'static ChildOf>)>,
+    ),
+>;
+
+/// Where a sphere is shown this frame: between its last two positions, `fraction` of the way
+/// (the fixed clock's overstep), unless interpolation is off, it opted out, or the game moved
+/// it since `Writeback`.
+struct Showing<'a> {
+    fraction: f64,
+    interpolate: bool,
+    physics: &'a SpherePhysicsWorld,
+    this_run: Tick,
+}
+
+impl Showing<'_> {
+    fn at(
+        &self,
+        position: &Ref<SpherePosition>,
+        previous: &Ref<PreviousSpherePosition>,
+        handle: &SphereHandle,
+        opted_out: bool,
+    ) -> DVec3 {
+        // `Writeback` sets both at once, the position to its body's; a position written later
+        // to another place was the game's (a teleport): shown where it was put, not slid to
+        // from where the sphere was. Written back unchanged (a clamp that held), it is no
+        // teleport (until the fifty-sixth session it was, and the sphere jumped).
+        let teleported = position
+            .last_changed()
+            .is_newer_than(previous.last_changed(), self.this_run)
+            && self
+                .physics
+                .world
+                .body(handle.0)
+                .is_none_or(|body| body.position() != position.0);
+        if self.interpolate && !opted_out && !teleported {
+            previous.0.lerp(position.0, self.fraction)
+        } else {
+            position.0
+        }
+    }
+
+    /// Writes the `Transform` of each sphere that is a child of another entity, through its
+    /// parent's frame as the `Transform`s are now: those nearer the root first, so that a
+    /// sphere whose ancestor is a sphere is placed through that sphere's new `Transform`.
+    /// `order` is scratch space.
+    fn place_children(&self, spheres: &mut ShownSpheres, order: &mut Vec<(usize, Entity, DVec3)>) {
+        order.clear();
+        {
+            let children = spheres.p1();
+            for (entity, (position, previous, handle, _, opted_out), _) in &children {
+                order.push((0, entity, self.at(&position, &previous, handle, opted_out)));
+            }
+        }
+        if order.is_empty() {
+            return;
+        }
+        {
+            let hierarchy = spheres.p2();
+            for (depth, entity, _) in order.iter_mut() {
+                let mut up = hierarchy.get(*entity).ok().and_then(|(_, parent)| parent);
+                while let Some(parent) = up
+                    && *depth < 1024
+                {
+                    *depth += 1;
+                    up = hierarchy.get(parent.parent()).ok().and_then(|(_, p)| p);
+                }
+            }
+        }
+        order.sort_unstable_by_key(|&(depth, entity, _)| (depth, entity));
+        for &(_, entity, at) in order.iter() {
+            let frame = {
+                let hierarchy = spheres.p2();
+                let Ok((_, Some(parent))) = hierarchy.get(entity) else {
+                    continue;
+                };
+                frame_of(parent.parent(), |e| {
+                    let (transform, up) = hierarchy.get(e).ok()?;
+                    Some((*transform, up.map(ChildOf::parent)))
+                })
+            };
+            let Some(local) = local_translation(&frame, at) else {
+                continue;
+            };
+            if let Ok((_, (_, _, _, mut transform, _), _)) = spheres.p1().get_mut(entity)
+                && transform.translation != local
+            {
+                transform.translation = local;
+            }
+        }
+    }
+}
+
 /// After the fixed steps of a frame: each sphere's `Transform` between its last two physics
 /// positions, by how far the fixed clock has run into the next step (and the simulated time
 /// that shows, in [`SphereShownTime`]).
@@ -905,7 +1013,8 @@ pub(crate) fn interpolate(
     diagnostics: Res<SpherePhysicsDiagnostics>,
     physics: Res<SpherePhysicsWorld>,
     mut shown: ResMut<SphereShownTime>,
-    mut spheres: Query<ShownSphere, Shown>,
+    mut spheres: ShownSpheres,
+    mut order: Local<Vec<(usize, Entity, DVec3)>>,
     ticks: SystemChangeTick,
 ) {
     let fraction = time.overstep_fraction_f64();
@@ -916,26 +1025,37 @@ pub(crate) fn interpolate(
         diagnostics.time
     };
     shown.set_if_neq(SphereShownTime(time_shown));
-    for (position, previous, handle, mut transform, opted_out) in &mut spheres {
-        // `Writeback` sets both at once, the position to its body's; a position written later
-        // to another place was the game's (a teleport): shown where it was put, not slid to
-        // from where the sphere was. Written back unchanged (a clamp that held), it is no
-        // teleport (until the fifty-sixth session it was, and the sphere jumped).
-        let teleported = position
-            .last_changed()
-            .is_newer_than(previous.last_changed(), ticks.this_run())
-            && physics
-                .world
-                .body(handle.0)
-                .is_none_or(|body| body.position() != position.0);
-        let at: DVec3 = if options.interpolate && !opted_out && !teleported {
-            previous.0.lerp(position.0, fraction)
-        } else {
-            position.0
-        };
-        let at = translation(at);
+    let showing = Showing {
+        fraction,
+        interpolate: options.interpolate,
+        physics: &physics,
+        this_run: ticks.this_run(),
+    };
+    for (position, previous, handle, mut transform, opted_out) in &mut spheres.p0() {
+        let at = translation(showing.at(&position, &previous, handle, opted_out));
         if transform.translation != at {
             transform.translation = at;
         }
     }
+    showing.place_children(&mut spheres, &mut order);
+}
+
+/// In `PostUpdate`, before Bevy propagates the `Transform`s: each sphere that is a child of
+/// another entity placed again, through its parent's frame as the game's `Update` left it
+/// (a parent moved there would otherwise carry its spheres along on screen for a frame).
+pub(crate) fn place_children(
+    time: Res<Time<Fixed>>,
+    options: Res<PluginOptions>,
+    physics: Res<SpherePhysicsWorld>,
+    mut spheres: ShownSpheres,
+    mut order: Local<Vec<(usize, Entity, DVec3)>>,
+    ticks: SystemChangeTick,
+) {
+    let showing = Showing {
+        fraction: time.overstep_fraction_f64(),
+        interpolate: options.interpolate,
+        physics: &physics,
+        this_run: ticks.this_run(),
+    };
+    showing.place_children(&mut spheres, &mut order);
 }

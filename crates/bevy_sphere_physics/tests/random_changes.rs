@@ -2,11 +2,14 @@
 //! change, add and remove their components (good values and bad), disable them, pause, single
 //! step, reset the simulation with new settings (sleeping on or off); and the same, but for
 //! teleports, by a game system that runs between `Prepare` and `Step` (one in `FixedUpdate`
-//! with no order against the plugin's sets may run there). Nothing may panic; after
-//! every frame each body in the core belongs to a live, enabled, unrejected sphere entity and
-//! each such entity has its body, positions and transforms are finite, the diagnostics count
-//! what the core holds, and the same frames give the same spheres, bit for bit. (Despawning a
-//! floor under a resting ball once crashed the next step.)
+//! with no order against the plugin's sets may run there). Spheres are also put under carts
+//! (entities with a `Transform`, moved, turned, scaled and despawned at random, from a random
+//! stream of their own) and taken off them. Nothing may panic; after every frame each body in
+//! the core belongs to a live, enabled, unrejected sphere entity and each such entity has its
+//! body, positions and transforms are finite, each is drawn (its `GlobalTransform`) between its
+//! last two positions, the diagnostics count what the core holds, and the same frames give the
+//! same spheres, bit for bit. (Despawning a floor under a resting ball once crashed the next
+//! step.)
 
 use std::time::Duration;
 
@@ -84,7 +87,7 @@ fn app(sleep: bool) -> App {
         });
     }
     let mut app = App::new();
-    app.add_plugins((MinimalPlugins, plugin))
+    app.add_plugins((MinimalPlugins, bevy::transform::TransformPlugin, plugin))
         .insert_resource(Time::<Fixed>::from_duration(STEP))
         .insert_resource(TimeUpdateStrategy::ManualDuration(STEP));
     app
@@ -251,6 +254,56 @@ fn change(world: &mut World, rng: &mut Rng, mid_step: bool) {
     }
 }
 
+/// An entity spheres are put under (`ChildOf`).
+#[derive(Component)]
+struct Cart;
+
+/// The carts, in entity order.
+fn carts(world: &mut World) -> Vec<Entity> {
+    let mut all: Vec<Entity> = world
+        .query_filtered::<Entity, With<Cart>>()
+        .iter(world)
+        .collect();
+    all.sort();
+    all
+}
+
+/// A cart's place: moved, turned and scaled (0.5 to 2 times).
+fn cart_place(rng: &mut Rng) -> Transform {
+    let turn = rng.vector(1.0).normalize_or(DVec3::Y).as_vec3();
+    Transform::from_translation(rng.vector(0.3).as_vec3())
+        .with_rotation(Quat::from_axis_angle(turn, rng.range(0.0, 6.3) as f32))
+        .with_scale(Vec3::splat(rng.range(0.5, 2.0) as f32))
+}
+
+/// One random thing a game does with carts between frames: a sphere put under one (a new cart
+/// now and then) or taken off its own, or a cart moved or (one time in ten) despawned, its
+/// spheres with it (Bevy despawns an entity's children).
+fn change_carts(world: &mut World, rng: &mut Rng) {
+    let carts = carts(world);
+    let all = spheres(world);
+    if rng.chance(0.5) && !all.is_empty() {
+        let e = all[rng.below(all.len() as u64) as usize];
+        if world.get::<ChildOf>(e).is_some() {
+            world.entity_mut(e).remove::<ChildOf>();
+        } else {
+            let cart = if carts.is_empty() || rng.chance(0.3) {
+                world.spawn((Cart, cart_place(rng))).id()
+            } else {
+                carts[rng.below(carts.len() as u64) as usize]
+            };
+            world.entity_mut(e).insert(ChildOf(cart));
+        }
+    } else if !carts.is_empty() {
+        let cart = carts[rng.below(carts.len() as u64) as usize];
+        if rng.chance(0.1) {
+            world.despawn(cart);
+        } else {
+            *world.get_mut::<Transform>(cart).unwrap() = cart_place(rng);
+        }
+    }
+}
+
 /// A sphere's state as a frame left it: its entity, position and velocity, to the bit (a
 /// velocity set to NaN after `Prepare` stays on its sphere until the next step rejects it).
 type State = (Entity, [u64; 3], [u64; 3]);
@@ -289,6 +342,18 @@ fn check(app: &mut App) -> Vec<State> {
         assert!(transform.translation.is_finite(), "{entity}: {transform:?}");
         let at = e.get::<SpherePosition>().unwrap().0;
         assert_eq!(at, in_core.position(), "{entity}");
+        // Drawn between its last two positions (interpolated, or at the last one), to `f32`
+        // rounding, under a cart or not.
+        let drawn = e.get::<GlobalTransform>().unwrap().translation().as_dvec3();
+        let previous = e.get::<PreviousSpherePosition>().unwrap().0;
+        let (along, from) = (at - previous, drawn - previous);
+        let t = (from.dot(along) / along.length_squared()).clamp(0.0, 1.0);
+        let off = (previous + along * if t.is_finite() { t } else { 0.0 } - drawn).length();
+        let rounding = 1e-6 * (1.0 + at.abs().max_element() + previous.abs().max_element());
+        assert!(
+            off <= rounding,
+            "{entity} drawn at {drawn}, {off} m off its path from {previous} to {at}"
+        );
         let v = e.get::<SphereVelocity>().map_or(DVec3::ZERO, |v| v.0);
         state.push((
             entity,
@@ -340,6 +405,9 @@ fn play(seed: u64, frames: u32) -> Vec<Vec<State>> {
     let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let sleep = rng.chance(0.6);
     let mut app = app(sleep);
+    // The carts' own stream: the other changes are drawn as they were before carts came in
+    // (the sixty-second session), so that the seeds keep their scenes.
+    let mut carts = Rng(seed.wrapping_mul(0xD1B5_4A32_D192_ED03) | 1);
     app.insert_resource(MidStep(Rng(rng.next() | 1)))
         .add_systems(
             FixedUpdate,
@@ -356,6 +424,9 @@ fn play(seed: u64, frames: u32) -> Vec<Vec<State>> {
         // A change every third frame or so, to let the spheres settle (and fall asleep).
         if rng.chance(0.35) {
             change(app.world_mut(), &mut rng, false);
+        }
+        if carts.chance(0.2) {
+            change_carts(app.world_mut(), &mut carts);
         }
         let mut clock = app.world_mut().resource_mut::<SpherePhysicsClock>();
         if clock.paused && rng.chance(0.2) {

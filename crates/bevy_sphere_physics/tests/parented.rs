@@ -1,0 +1,259 @@
+//! Spheres that are children of other entities (Bevy's `ChildOf`): each is simulated at its
+//! place in the world, and drawn there, whatever its parent's translation, rotation and scale,
+//! and however the game moves the parent. (Until the sixty-second session a child's
+//! `Transform` was read and written as its place in the world, and such a sphere was drawn
+//! somewhere else, with no warning.)
+
+use std::time::Duration;
+
+use bevy::ecs::schedule::{LogLevel, ScheduleBuildSettings};
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy::transform::TransformPlugin;
+use bevy_sphere_physics::prelude::*;
+
+/// 1/64 s: exact in nanoseconds and in binary, so fixed steps and frames line up exactly.
+const STEP: Duration = Duration::from_nanos(15_625_000);
+
+fn app(plugin: SpherePhysicsPlugin) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin, plugin))
+        .insert_resource(Time::<Fixed>::from_duration(STEP))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(STEP));
+    let strict = |s: &mut Schedule| {
+        s.set_build_settings(ScheduleBuildSettings {
+            ambiguity_detection: LogLevel::Error,
+            ..default()
+        });
+    };
+    app.edit_schedule(FixedUpdate, strict);
+    app.edit_schedule(PostUpdate, strict);
+    app
+}
+
+fn position(app: &App, entity: Entity) -> DVec3 {
+    app.world().get::<SpherePosition>(entity).unwrap().0
+}
+
+/// Where Bevy draws the entity: its `GlobalTransform`, as propagated at the end of the frame.
+fn drawn(app: &App, entity: Entity) -> Vec3 {
+    app.world()
+        .get::<GlobalTransform>(entity)
+        .unwrap()
+        .translation()
+}
+
+/// Asserts that the sphere is drawn where it is simulated (interpolation off), to `f32`
+/// rounding of the places involved (a few metres: 1e-5 m).
+fn assert_drawn_at_its_place(app: &App, sphere: Entity) {
+    let at = position(app, sphere);
+    let shown = drawn(app, sphere).as_dvec3();
+    assert!(
+        (shown - at).abs().max_element() < 1e-5,
+        "drawn at {shown}, simulated at {at}"
+    );
+}
+
+/// A parent translated, rotated a quarter turn about z and scaled twice.
+fn turned_parent() -> Transform {
+    Transform::from_xyz(10.0, 0.0, 0.0)
+        .with_rotation(Quat::from_rotation_z(std::f32::consts::FRAC_PI_2))
+        .with_scale(Vec3::splat(2.0))
+}
+
+#[test]
+fn a_sphere_under_a_moved_turned_and_scaled_parent_starts_and_falls_where_it_is_drawn() {
+    let mut app = app(SpherePhysicsPlugin::default()
+        .gravity(DVec3::NEG_Y * 9.81)
+        .interpolate(false));
+    let parent = app.world_mut().spawn(turned_parent()).id();
+    // (0, 1, 0) in the parent's frame: scaled to (0, 2, 0), turned to (-2, 0, 0), moved to
+    // (8, 0, 0).
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+            ChildOf(parent),
+        ))
+        .id();
+    app.update();
+    app.update();
+    let start = position(&app, sphere);
+    assert!(
+        (start.x - 8.0).abs() < 1e-6 && start.z.abs() < 1e-6,
+        "joined at {start}, not (8, y, 0)"
+    );
+    for _ in 0..30 {
+        app.update();
+    }
+    let at = position(&app, sphere);
+    assert!((at.x - 8.0).abs() < 1e-6, "fell sideways to {at}");
+    assert!(at.y < start.y - 0.5, "did not fall: {start} to {at}");
+    assert_drawn_at_its_place(&app, sphere);
+}
+
+#[test]
+fn a_parent_the_game_moves_does_not_carry_its_sphere_on_screen() {
+    #[derive(Component)]
+    struct Cart;
+    let mut app = app(SpherePhysicsPlugin::default().interpolate(false));
+    // The cart moves in `Update`, after the spheres' `Transform`s are written for the frame.
+    app.add_systems(Update, |mut carts: Query<&mut Transform, With<Cart>>| {
+        for mut cart in &mut carts {
+            cart.translation.x += 0.25;
+            cart.rotate_y(0.1);
+        }
+    });
+    let cart = app.world_mut().spawn((Cart, Transform::default())).id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(1.0, 2.0, 3.0),
+            ChildOf(cart),
+        ))
+        .id();
+    let mut joined_at = None;
+    for _ in 0..20 {
+        app.update();
+        if let Some(&SpherePosition(at)) = app.world().get::<SpherePosition>(sphere) {
+            // At rest, no gravity: it stays where it joined.
+            assert_eq!(*joined_at.get_or_insert(at), at);
+            assert_drawn_at_its_place(&app, sphere);
+        }
+    }
+    assert!(joined_at.is_some(), "the sphere never joined");
+    assert!(drawn(&app, cart).x > 4.0, "the cart did not move");
+}
+
+#[test]
+fn a_sphere_parented_to_a_sphere_is_drawn_at_its_own_place() {
+    let mut app = app(SpherePhysicsPlugin::default()
+        .gravity(DVec3::NEG_Y * 9.81)
+        .interpolate(false));
+    let holder = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            Transform::from_xyz(0.0, 10.0, 0.0),
+            SphereVelocity(DVec3::new(3.0, 0.0, 0.0)),
+        ))
+        .id();
+    // Two deep, each a child of the one before, each 2 m beside its parent.
+    let middle = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            Transform::from_xyz(0.0, 0.0, 2.0),
+            ChildOf(holder),
+        ))
+        .id();
+    let last = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.5),
+            Transform::from_xyz(0.0, 0.0, 2.0),
+            SphereVelocity(DVec3::new(-3.0, 0.0, 0.0)),
+            ChildOf(middle),
+        ))
+        .id();
+    app.update();
+    app.update();
+    assert_eq!(position(&app, middle).z, 2.0);
+    assert_eq!(position(&app, last).z, 4.0);
+    for _ in 0..20 {
+        app.update();
+    }
+    // Each moves on its own: the holder to +x, the middle one nowhere sideways, the last to -x.
+    assert!(position(&app, holder).x > 0.5);
+    assert_eq!(position(&app, middle).x, 0.0);
+    assert!(position(&app, last).x < -0.5);
+    for sphere in [holder, middle, last] {
+        assert_drawn_at_its_place(&app, sphere);
+    }
+}
+
+#[test]
+fn a_child_spawned_before_prepare_joins_at_its_place_in_the_world() {
+    // Spawned in the fixed step itself, before `Prepare`: no `GlobalTransform` has been
+    // propagated for it (nor for its parent) yet.
+    #[derive(Resource, Default)]
+    struct Spawned(Option<Entity>);
+    let mut app = app(SpherePhysicsPlugin::default().interpolate(false));
+    app.init_resource::<Spawned>().add_systems(
+        FixedUpdate,
+        (|mut commands: Commands, mut spawned: ResMut<Spawned>| {
+            if spawned.0.is_none() {
+                let parent = commands.spawn(turned_parent()).id();
+                spawned.0 = Some(
+                    commands
+                        .spawn((
+                            SphereBody::new(0.1),
+                            Transform::from_xyz(0.0, 1.0, 0.0),
+                            ChildOf(parent),
+                        ))
+                        .id(),
+                );
+            }
+        })
+        .before(SpherePhysicsSystems::Prepare),
+    );
+    for _ in 0..3 {
+        app.update();
+    }
+    let sphere = app.world().resource::<Spawned>().0.unwrap();
+    let at = position(&app, sphere);
+    assert!(
+        (at - DVec3::new(8.0, 0.0, 0.0)).length() < 1e-6,
+        "joined at {at}"
+    );
+    assert_drawn_at_its_place(&app, sphere);
+}
+
+#[test]
+fn a_position_given_to_a_child_moves_its_transform_through_the_parent() {
+    let mut app = app(SpherePhysicsPlugin::default());
+    let parent = app.world_mut().spawn(turned_parent()).id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            SpherePosition(DVec3::new(8.0, 0.0, 0.0)),
+            ChildOf(parent),
+        ))
+        .id();
+    // At once, before any update: (8, 0, 0) is (0, 1, 0) in the parent's frame.
+    let local = app.world().get::<Transform>(sphere).unwrap().translation;
+    assert!(
+        (local - Vec3::Y).length() < 1e-6,
+        "local translation {local}"
+    );
+}
+
+#[test]
+fn a_parent_scaled_to_zero_leaves_its_sphere_simulated_and_its_transform_finite() {
+    let mut app = app(SpherePhysicsPlugin::default().gravity(DVec3::NEG_Y * 9.81));
+    let parent = app
+        .world_mut()
+        .spawn(Transform::from_xyz(0.0, 5.0, 0.0).with_scale(Vec3::ZERO))
+        .id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(3.0, 0.0, 0.0),
+            ChildOf(parent),
+        ))
+        .id();
+    for _ in 0..10 {
+        app.update();
+    }
+    // Its place was the parent's (the scale takes its translation to nothing): it fell from
+    // there. No `Transform` can draw it (the parent's frame has no inverse); the one it has
+    // is left as it was, finite.
+    let at = position(&app, sphere);
+    assert!(at.x == 0.0 && at.y < 5.0, "at {at}");
+    let transform = app.world().get::<Transform>(sphere).unwrap();
+    assert!(transform.translation.is_finite());
+}

@@ -8,7 +8,9 @@
 //! one group). And, with sleeping on, a ball rolling for a second among 10 000 marbles asleep
 //! apart on a floor, each its own island (the step leaves out the islands beyond the ball's
 //! reach, and the islands it takes change as it rolls), and a step after one of those
-//! marbles is woken (the bodies asleep change at every step).
+//! marbles is woken (the bodies asleep change at every step). And a step of 60 balls in a pit
+//! held inside a fixed sphere of radius 1e4 put over them (its centre just above the pit), by
+//! the pit's floor and walls: every step falls back, and its contacts cannot all be met.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use sphere_bench::scenes;
@@ -73,6 +75,49 @@ fn resting_sheet() -> World {
     world
 }
 
+/// 60 balls of radius 0.05 settled for two seconds in a pit 0.6 m across (a floor and four
+/// walls, fixed spheres of radius 1e4), then a fixed sphere of radius 1e4 put over them, its
+/// centre 0.6 m above the floor: they lie 10 km deep inside it, held there by the pit.
+fn held() -> World {
+    let mut world = World::new(Settings::with_gravity(DVec3::new(0.0, -9.81, 0.0)));
+    let (wall, half) = (1.0e4, 0.3);
+    for at in [
+        DVec3::new(0.0, -wall, 0.0),
+        DVec3::new(-wall - half, 0.0, 0.0),
+        DVec3::new(wall + half, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -wall - half),
+        DVec3::new(0.0, 0.0, wall + half),
+    ] {
+        world
+            .add_sphere(SphereDesc::new(wall).at(at).fixed())
+            .expect("valid");
+    }
+    for i in 0..60u32 {
+        let at = DVec3::new(
+            f64::from(i % 5) * 0.11 - 0.22,
+            0.05 + f64::from(i / 25) * 0.11,
+            f64::from((i / 5) % 5) * 0.11 - 0.22,
+        );
+        world
+            .add_sphere(SphereDesc::new(0.05).at(at))
+            .expect("valid");
+    }
+    for _ in 0..120 {
+        world.step(1.0 / 60.0).expect("valid dt");
+    }
+    world
+        .add_sphere(
+            SphereDesc::new(wall)
+                .at(DVec3::new(0.0, 0.6, -0.15))
+                .fixed(),
+        )
+        .expect("valid");
+    for _ in 0..5 {
+        world.step(1.0 / 60.0).expect("valid dt");
+    }
+    world
+}
+
 fn simultaneous(c: &mut Criterion) {
     let mut group = c.benchmark_group("simultaneous");
     group.sample_size(10);
@@ -94,6 +139,13 @@ fn simultaneous(c: &mut Criterion) {
             |w| w.step(1.0 / 60.0).expect("valid dt").collisions,
             BatchSize::LargeInput,
         )
+    });
+    group.finish();
+    let mut group = c.benchmark_group("held");
+    group.sample_size(20);
+    let mut world = held();
+    group.bench_function("60", |b| {
+        b.iter(|| world.step(1.0 / 60.0).expect("valid dt").collisions)
     });
     group.finish();
 }

@@ -311,8 +311,9 @@ impl Solver {
 
     /// The fallback's finishing sweeps (see [`Solver::fall_back`]): on while any contact
     /// would end the `rest` of the step deeper than it is allowed (see `fallback_excess`), up
-    /// to [`FALLBACK_FINISH_SWEEPS`], and until four batches in a row leave that no smaller.
-    /// Returns whether it swept at all.
+    /// to [`FALLBACK_FINISH_SWEEPS`], and until four batches in a row leave that no smaller,
+    /// by [`FINISH_PROGRESS`] of it, than the least a batch has left yet. Returns whether it
+    /// swept at all.
     pub(super) fn finish_sweeps(
         &mut self,
         threshold: f64,
@@ -321,11 +322,17 @@ impl Solver {
     ) -> bool {
         let (mut finishing, mut stalled) = (0, 0);
         let mut excess = self.fallback_excess(rest, ctx);
+        let mut least = excess;
         while finishing < FALLBACK_FINISH_SWEEPS && excess > 0.0 && stalled < 4 {
             self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS, rest, ctx);
             finishing += FALLBACK_LATER_SWEEPS;
             let left = self.fallback_excess(rest, ctx);
-            stalled = if left < excess { 0 } else { stalled + 1 };
+            stalled = if left < least * (1.0 - FINISH_PROGRESS) {
+                0
+            } else {
+                stalled + 1
+            };
+            least = least.min(left);
             excess = left;
         }
         finishing > 0

@@ -4,6 +4,8 @@
 //! parent and its ancestors as they are (not their `GlobalTransform`s, which Bevy brings up to
 //! date only once a frame, in `PostUpdate`).
 
+use bevy::ecs::entity_disabling::Disabled;
+use bevy::ecs::query::Allow;
 use bevy::ecs::system::SystemParam;
 use bevy::math::{DAffine3, DVec3};
 use bevy::prelude::*;
@@ -24,8 +26,10 @@ fn affine(transform: &Transform) -> DAffine3 {
 }
 
 /// Where `parent`'s frame lies in the world: the `Transform`s of `parent` and its ancestors,
-/// composed in `f64`. `look_up` gives an entity's `Transform` and its own parent; an ancestor
-/// without a `Transform` ends the chain (it has no place, as in Bevy's propagation).
+/// composed in `f64` (a disabled ancestor's too: `Disabled` is not handed down to children).
+/// `look_up` gives an entity's `Transform` and its own parent; an ancestor without a
+/// `Transform` ends the chain (Bevy does not propagate through it at all: a sphere under one
+/// is not drawn where it is, whatever the plugin writes).
 pub(crate) fn frame_of(
     parent: Entity,
     mut look_up: impl FnMut(Entity) -> Option<(Transform, Option<Entity>)>,
@@ -46,6 +50,10 @@ pub(crate) fn frame_of(
 /// [`translation`] for positions past `f32`'s range); `None` if the frame has no inverse (a
 /// parent scaled to zero), when the child's `Transform` is best left as it is.
 pub(crate) fn local_translation(frame: &DAffine3, at: DVec3) -> Option<Vec3> {
+    let determinant = frame.matrix3.determinant();
+    if determinant == 0.0 || !determinant.is_finite() {
+        return None;
+    }
     let local = frame.inverse().transform_point3(at);
     local.is_finite().then(|| translation(local))
 }
@@ -53,8 +61,8 @@ pub(crate) fn local_translation(frame: &DAffine3, at: DVec3) -> Option<Vec3> {
 /// The hierarchy as `Prepare` reads it: where a sphere placed by its `Transform` starts.
 #[derive(SystemParam)]
 pub(crate) struct Places<'w, 's> {
-    parents: Query<'w, 's, &'static ChildOf>,
-    transforms: Query<'w, 's, &'static Transform>,
+    parents: Query<'w, 's, &'static ChildOf, Allow<Disabled>>,
+    transforms: Query<'w, 's, &'static Transform, Allow<Disabled>>,
 }
 
 impl Places<'_, '_> {
@@ -71,5 +79,10 @@ impl Places<'_, '_> {
             .transform_point3(local),
             Err(_) => local,
         }
+    }
+
+    /// Whether `entity` is a child of another entity.
+    pub(crate) fn is_child(&self, entity: Entity) -> bool {
+        self.parents.contains(entity)
     }
 }

@@ -35,10 +35,12 @@ pub enum SpherePhysicsSystems {
 /// [`RunFixedMainLoopSystems::AfterFixedMainLoop`]): it sets each sphere's `Transform` between
 /// its last two physics positions and updates [`SphereShownTime`]. A game system there that
 /// also writes `Transform`s or reads the spheres' (a camera following a sphere, say) goes
-/// `.after(SphereInterpolation)`. (The plugin's one other system outside [`FixedUpdate`]
-/// writes again, in `PostUpdate` before `TransformSystems::Propagate`, the `Transform`s of
-/// spheres that are children of other entities, through their parents as `Update` left
-/// them.)
+/// `.after(SphereInterpolation)`. The set is also in `PostUpdate`, before
+/// `TransformSystems::Propagate`: there the plugin writes again the `Transform`s of spheres
+/// that are children of other entities, through their parents as `Update` left them (and of
+/// those that stopped being children since the last frame). A game system that moves such a
+/// parent in `PostUpdate` (an animation's, say: Bevy's `AnimationSystems`) goes
+/// `.before(SphereInterpolation)` there.
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct SphereInterpolation;
 
@@ -191,9 +193,13 @@ impl Plugin for SpherePhysicsPlugin {
                 RunFixedMainLoop,
                 systems::interpolate.in_set(SphereInterpolation),
             )
+            .configure_sets(
+                PostUpdate,
+                SphereInterpolation.before(bevy::transform::TransformSystems::Propagate),
+            )
             .add_systems(
                 PostUpdate,
-                systems::place_children.before(bevy::transform::TransformSystems::Propagate),
+                systems::place_children.in_set(SphereInterpolation),
             );
     }
 }

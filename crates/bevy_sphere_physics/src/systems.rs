@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use bevy::ecs::change_detection::Tick;
 use bevy::ecs::entity_disabling::Disabled;
+use bevy::ecs::query::Allow;
 use bevy::ecs::system::SystemChangeTick;
 use bevy::math::DVec3;
 use bevy::prelude::*;
@@ -465,10 +466,20 @@ pub(crate) fn prepare(
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
         let desc = describe(&item, &options, None, &places);
+        // What a refusal is kept as: for a child placed by its `Transform`, its own translation
+        // rather than where its parent puts it, which moves with the parent (such a sphere was
+        // reported again at every step its parent moved).
+        let kept = match (item.3, item.2) {
+            (None, Some(transform)) if places.is_child(entity) => SphereDesc {
+                position: transform.translation.as_dvec3(),
+                ..desc.clone()
+            },
+            _ => desc.clone(),
+        };
         // Still the same invalid description: already reported. Tried again if it was refused
         // for its force's sum with the world's gravity, and the gravity changed since (reported
         // again only if refused for another reason).
-        let refused_as = item.10.filter(|r| same_desc(&r.desc, &desc));
+        let refused_as = item.10.filter(|r| same_desc(&r.desc, &kept));
         if refused_as.is_some_and(|r| r.gravity.is_none_or(|g| same_bits(g, gravity))) {
             continue;
         }
@@ -497,11 +508,11 @@ pub(crate) fn prepare(
             {
                 commands.entity(entity).try_insert(RejectedSphere {
                     error,
-                    desc,
+                    desc: kept,
                     gravity: Some(gravity),
                 });
             }
-            Err(error) => reject(&mut commands, entity, desc, error),
+            Err(error) => reject(&mut commands, entity, kept, error),
         }
     }
 }
@@ -910,7 +921,7 @@ type ShownSpheres<'w, 's> = ParamSet<
     (
         Query<'static, 'static, ShownSphere, (Shown, Without<ChildOf>)>,
         Query<'static, 'static, (Entity, ShownSphere, &'static ChildOf), Shown>,
-        Query<'static, 'static, (&'static Transform, Option<&'static ChildOf>)>,
+        Query<'static, 'static, (&'static Transform, Option<&'static ChildOf>), Allow<Disabled>>,
     ),
 >;
 
@@ -1042,12 +1053,15 @@ pub(crate) fn interpolate(
 
 /// In `PostUpdate`, before Bevy propagates the `Transform`s: each sphere that is a child of
 /// another entity placed again, through its parent's frame as the game's `Update` left it
-/// (a parent moved there would otherwise carry its spheres along on screen for a frame).
+/// (a parent moved there would otherwise carry its spheres along on screen for a frame), and
+/// each that stopped being one since the last frame placed in the world (its `Transform`
+/// was still relative to its old parent).
 pub(crate) fn place_children(
     time: Res<Time<Fixed>>,
     options: Res<PluginOptions>,
     physics: Res<SpherePhysicsWorld>,
     mut spheres: ShownSpheres,
+    mut unparented: RemovedComponents<ChildOf>,
     mut order: Local<Vec<(usize, Entity, DVec3)>>,
     ticks: SystemChangeTick,
 ) {
@@ -1057,5 +1071,14 @@ pub(crate) fn place_children(
         physics: &physics,
         this_run: ticks.this_run(),
     };
+    let mut roots = spheres.p0();
+    for entity in unparented.read() {
+        if let Ok((position, previous, handle, mut transform, opted_out)) = roots.get_mut(entity) {
+            let at = translation(showing.at(&position, &previous, handle, opted_out));
+            if transform.translation != at {
+                transform.translation = at;
+            }
+        }
+    }
     showing.place_children(&mut spheres, &mut order);
 }

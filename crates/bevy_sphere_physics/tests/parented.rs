@@ -257,3 +257,157 @@ fn a_parent_scaled_to_zero_leaves_its_sphere_simulated_and_its_transform_finite(
     let transform = app.world().get::<Transform>(sphere).unwrap();
     assert!(transform.translation.is_finite());
 }
+
+#[test]
+fn a_parent_turned_and_scaled_unevenly_draws_its_sphere_at_its_place() {
+    // Turned about a slanted axis and scaled differently along each: the frame shears.
+    let mut app = app(SpherePhysicsPlugin::default().interpolate(false));
+    let parent = app
+        .world_mut()
+        .spawn(
+            Transform::from_xyz(-3.0, 4.0, 1.0)
+                .with_rotation(Quat::from_axis_angle(
+                    Vec3::new(1.0, 2.0, 3.0).normalize(),
+                    0.7,
+                ))
+                .with_scale(Vec3::new(0.5, 2.0, 3.0)),
+        )
+        .id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(1.0, -1.0, 0.5),
+            ChildOf(parent),
+        ))
+        .id();
+    app.update();
+    app.update();
+    // Where Bevy puts the sphere's own origin under that parent.
+    let expected = (Transform::from_xyz(-3.0, 4.0, 1.0)
+        .with_rotation(Quat::from_axis_angle(
+            Vec3::new(1.0, 2.0, 3.0).normalize(),
+            0.7,
+        ))
+        .with_scale(Vec3::new(0.5, 2.0, 3.0))
+        .to_matrix()
+        .transform_point3(Vec3::new(1.0, -1.0, 0.5)))
+    .as_dvec3();
+    let joined = position(&app, sphere);
+    assert!(
+        (joined - expected).length() < 1e-5,
+        "{joined} against {expected}"
+    );
+    app.world_mut().get_mut::<SphereVelocity>(sphere).unwrap().0 = DVec3::new(1.0, 0.5, -2.0);
+    for _ in 0..20 {
+        app.update();
+        assert_drawn_at_its_place(&app, sphere);
+    }
+}
+
+#[test]
+fn a_sphere_taken_off_its_parent_in_update_is_drawn_at_its_place_that_frame() {
+    #[derive(Resource, Default)]
+    struct TakeOff(Option<Entity>);
+    let mut app = app(SpherePhysicsPlugin::default().interpolate(false));
+    app.init_resource::<TakeOff>().add_systems(
+        Update,
+        |mut commands: Commands, mut take_off: ResMut<TakeOff>| {
+            if let Some(sphere) = take_off.0.take() {
+                commands.entity(sphere).remove::<ChildOf>();
+            }
+        },
+    );
+    let parent = app.world_mut().spawn(turned_parent()).id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+            ChildOf(parent),
+        ))
+        .id();
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_drawn_at_its_place(&app, sphere);
+    app.world_mut().resource_mut::<TakeOff>().0 = Some(sphere);
+    app.update();
+    assert!(app.world().get::<ChildOf>(sphere).is_none());
+    assert_drawn_at_its_place(&app, sphere);
+}
+
+#[test]
+fn regression_a_rejected_child_of_a_moving_parent_is_reported_once() {
+    // Rejected once for its radius; its parent, moved at every frame, changes where it would
+    // join, which is not a change of the sphere's own (it was reported again at every step).
+    #[derive(Component)]
+    struct Cart;
+    #[derive(Resource, Default)]
+    struct Reports(u32);
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Reports>().add_systems(
+        Update,
+        (
+            |mut carts: Query<&mut Transform, With<Cart>>| {
+                for mut cart in &mut carts {
+                    cart.translation.x += 0.25;
+                }
+            },
+            |mut rejected: MessageReader<SphereRejected>, mut reports: ResMut<Reports>| {
+                reports.0 += rejected.read().count() as u32;
+            },
+        ),
+    );
+    let cart = app.world_mut().spawn((Cart, Transform::default())).id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(-1.0),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+            ChildOf(cart),
+        ))
+        .id();
+    for _ in 0..20 {
+        app.update();
+    }
+    assert_eq!(app.world().resource::<Reports>().0, 1);
+    assert!(app.world().get::<RejectedSphere>(sphere).is_some());
+    // Mended, it joins where its parent has taken it.
+    app.world_mut()
+        .get_mut::<SphereBody>(sphere)
+        .unwrap()
+        .radius = 0.1;
+    for _ in 0..3 {
+        app.update();
+    }
+    assert!(app.world().get::<RejectedSphere>(sphere).is_none());
+    assert!(position(&app, sphere).x > 4.0);
+}
+
+#[test]
+fn a_sphere_under_a_disabled_parent_joins_through_that_parent() {
+    // Bevy's `Disabled` hides the parent from queries, not from its children: the sphere, not
+    // disabled, joins where the parent's `Transform` puts it (it joined at its translation
+    // read as a place in the world, as if it had no parent).
+    let mut app = app(SpherePhysicsPlugin::default());
+    let parent = app
+        .world_mut()
+        .spawn((
+            Transform::from_xyz(5.0, 0.0, 0.0),
+            bevy::ecs::entity_disabling::Disabled,
+        ))
+        .id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+            ChildOf(parent),
+        ))
+        .id();
+    for _ in 0..3 {
+        app.update();
+    }
+    assert_eq!(position(&app, sphere), DVec3::new(5.0, 1.0, 0.0));
+}

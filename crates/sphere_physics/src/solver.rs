@@ -796,9 +796,9 @@ const FALLBACK_MARGIN: f64 = 0.1;
 /// `Solver::push_on`).
 const FALLBACK_FINISH_SWEEPS: u32 = 1024;
 
-/// How much smaller than the least yet a batch of the fallback's finishing sweeps must leave
-/// what its contacts close past their allowance to count as progress (see
-/// `Solver::finish_sweeps`; four batches in a row without it end the sweeps). Contacts that
+/// How much smaller a batch of the fallback's finishing sweeps must leave what its contacts
+/// close past their allowance, than the batch before or the least yet, to count as progress
+/// (see `Solver::finish_sweeps`: four batches without it end the sweeps). Contacts that
 /// cannot all be met (a sphere held between fixed ones deeper into it than it may part in a
 /// step) leave the sum creeping down by less than a thousandth a batch, or swinging between
 /// two values, for all 1024 sweeps, in each of the deep pushes' rounds: 60 balls in a pit, a

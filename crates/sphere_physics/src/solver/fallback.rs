@@ -185,10 +185,12 @@ impl Solver {
             // line of 100 spheres struck at 1 km/s ended 2 cm into itself), up to
             // `FALLBACK_FINISH_SWEEPS` more. A landing pit seldom leaves a pair that deep (its
             // 10 000 never; the 1000 now and then). Stopped, too, when four batches of sweeps
-            // in a row each leave the excess (summed over the contacts) no smaller than the
-            // batch before (a long chain's rises at first, then falls batch after batch): a
-            // set of contacts no velocities satisfy (a sphere pressed between fixed ones)
-            // would otherwise take every sweep, its impulses growing all the while.
+            // leave the excess (summed over the contacts) no smaller, by a thousandth, than the
+            // batch before, with no new least between them (a long chain's rises at first,
+            // then falls batch after batch; see `Solver::finish_sweeps`): a set of contacts no
+            // velocities satisfy (a sphere pressed between fixed ones) would otherwise take
+            // every sweep, its impulses growing all the while, its excess creeping down or
+            // swinging.
             let threshold = self.sweep_threshold();
             let swept = self.finish_sweeps(threshold, rest, ctx);
             let solved = self.solve_deep_groups_exactly(rest, false, ctx);

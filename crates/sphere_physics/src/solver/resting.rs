@@ -311,9 +311,11 @@ impl Solver {
 
     /// The fallback's finishing sweeps (see [`Solver::fall_back`]): on while any contact
     /// would end the `rest` of the step deeper than it is allowed (see `fallback_excess`), up
-    /// to [`FALLBACK_FINISH_SWEEPS`], and until four batches in a row leave that no smaller,
-    /// by [`FINISH_PROGRESS`] of it, than the least a batch has left yet. Returns whether it
-    /// swept at all.
+    /// to [`FALLBACK_FINISH_SWEEPS`], and until four batches leave that no smaller, by
+    /// [`FINISH_PROGRESS`] of it, than the batch before. A batch that leaves it that much below
+    /// the least yet starts the count again; one that leaves it that much below the batch
+    /// before, but not below the least, neither counts nor starts it again (a long chain's
+    /// rises at first, then falls, and may swing). Returns whether it swept at all.
     pub(super) fn finish_sweeps(
         &mut self,
         threshold: f64,
@@ -323,15 +325,16 @@ impl Solver {
         let (mut finishing, mut stalled) = (0, 0);
         let mut excess = self.fallback_excess(rest, ctx);
         let mut least = excess;
+        let keep = 1.0 - FINISH_PROGRESS;
         while finishing < FALLBACK_FINISH_SWEEPS && excess > 0.0 && stalled < 4 {
             self.sweep_resting(threshold, FALLBACK_LATER_SWEEPS, rest, ctx);
             finishing += FALLBACK_LATER_SWEEPS;
             let left = self.fallback_excess(rest, ctx);
-            stalled = if left < least * (1.0 - FINISH_PROGRESS) {
-                0
-            } else {
-                stalled + 1
-            };
+            if left < least * keep {
+                stalled = 0;
+            } else if left >= excess * keep {
+                stalled += 1;
+            }
             least = least.min(left);
             excess = left;
         }

@@ -803,8 +803,9 @@ const FALLBACK_FINISH_SWEEPS: u32 = 1024;
 /// step) leave the sum creeping down by less than a thousandth a batch, or swinging between
 /// two values, for all 1024 sweeps, in each of the deep pushes' rounds: 60 balls in a pit, a
 /// fixed sphere of radius 1e4 put over them (its centre just above the pit), fell back at
-/// every step and took 11.5 ms a step, 7.4 ms since (the criterion bench `held/60`, one run
-/// each). (Until the sixty-second session any decrease counted.)
+/// every step and took 12.6 to 13.4 ms a step, 8.9 to 10.2 ms since (the criterion bench
+/// `held/60`, three runs of each in turns). (Until the sixty-second session any decrease
+/// counted.)
 const FINISH_PROGRESS: f64 = 1e-3;
 
 /// The most passes of the fallback (each its rounds, then its finishing sweeps and exact

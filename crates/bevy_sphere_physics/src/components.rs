@@ -170,7 +170,8 @@ pub struct NoInterpolation;
 /// Put on a sphere whose components are invalid (radius ≤ 0, NaN, ...), or whose motion would
 /// have left the finite range: it is left out of the simulation until its components change
 /// (or, if it was refused for its force's sum with the world's gravity, until the gravity
-/// does). The error names the field and the value.
+/// does; if it is a child placed by its `Transform` and was refused for its place, beyond
+/// its string say, until its parent moves it too). The error names the field and the value.
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct RejectedSphere {
     /// What is wrong.
@@ -178,6 +179,11 @@ pub struct RejectedSphere {
     /// The description that was refused (tried again only once it changes, or, if `gravity`
     /// is set, once the world's gravity does).
     pub(crate) desc: sphere_physics::SphereDesc,
+    /// For a child placed by its `Transform`: the description with its own translation for
+    /// its position (`desc` has where its parent put it). While that stays the same, a
+    /// refusal not of its place (its position or its string) is not tried again as the
+    /// parent moves, and one of its place is tried again but not reported again.
+    pub(crate) own: Option<sphere_physics::SphereDesc>,
     /// The world's gravity when it was refused, if the refusal was its (the sphere would be
     /// taken without gravity, and is not under this one): tried again once it changes. (Until
     /// the sixty-first session a sphere refused under a gravity the game then mended stayed

@@ -28,8 +28,9 @@ fn affine(transform: &Transform) -> DAffine3 {
 /// Where `parent`'s frame lies in the world: the `Transform`s of `parent` and its ancestors,
 /// composed in `f64` (a disabled ancestor's too: `Disabled` is not handed down to children).
 /// `look_up` gives an entity's `Transform` and its own parent; an ancestor without a
-/// `Transform` ends the chain (Bevy does not propagate through it at all: a sphere under one
-/// is not drawn where it is, whatever the plugin writes).
+/// `Transform` ends the chain. (Bevy's propagation stops at either, a disabled ancestor or
+/// one without a `Transform`: a sphere under one is simulated at its place but not drawn
+/// there, whatever the plugin writes.)
 pub(crate) fn frame_of(
     parent: Entity,
     mut look_up: impl FnMut(Entity) -> Option<(Transform, Option<Entity>)>,

@@ -9,7 +9,7 @@ use bevy::ecs::query::Allow;
 use bevy::ecs::system::SystemChangeTick;
 use bevy::math::DVec3;
 use bevy::prelude::*;
-use sphere_physics::{Body, BodyId, SphereDesc, Tether, WorldError};
+use sphere_physics::{Body, BodyId, Field, SphereDesc, Tether, WorldError};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereHit, SphereRejected};
@@ -335,7 +335,11 @@ pub(crate) fn prepare(
     // Disabled spheres (Bevy's `Disabled`: hidden from every other query) leave the
     // simulation, and join it again from where they were when enabled.
     remove_bodies(physics, disabled);
-    let mut reject = |commands: &mut Commands, entity: Entity, desc: SphereDesc, error| {
+    let mut reject = |commands: &mut Commands,
+                      entity: Entity,
+                      desc: SphereDesc,
+                      own: Option<SphereDesc>,
+                      error| {
         warn!("sphere {entity} left out of the simulation: {error}");
         rejected.write(SphereRejected {
             entity,
@@ -345,6 +349,7 @@ pub(crate) fn prepare(
         commands.entity(entity).try_insert(RejectedSphere {
             error,
             desc,
+            own,
             gravity,
         });
     };
@@ -433,7 +438,7 @@ pub(crate) fn prepare(
                             if let Some(position) = put_back {
                                 retried.position = position;
                             }
-                            reject(&mut commands, entity, retried, error);
+                            reject(&mut commands, entity, retried, None, error);
                             rejected_now.push(entity);
                         }
                     }
@@ -466,20 +471,32 @@ pub(crate) fn prepare(
     for entity in new {
         let item = spheres.get(entity).expect("listed above");
         let desc = describe(&item, &options, None, &places);
-        // What a refusal is kept as: for a child placed by its `Transform`, its own translation
-        // rather than where its parent puts it, which moves with the parent (such a sphere was
-        // reported again at every step its parent moved).
-        let kept = match (item.3, item.2) {
-            (None, Some(transform)) if places.is_child(entity) => SphereDesc {
+        // A child placed by its `Transform`: its own description has its own translation,
+        // where `desc` has the place its parent puts it at, which moves with the parent (such
+        // a sphere, rejected, was reported again at every step its parent moved).
+        let own = match (item.3, item.2) {
+            (None, Some(transform)) if places.is_child(entity) => Some(SphereDesc {
                 position: transform.translation.as_dvec3(),
                 ..desc.clone()
-            },
-            _ => desc.clone(),
+            }),
+            _ => None,
         };
-        // Still the same invalid description: already reported. Tried again if it was refused
-        // for its force's sum with the world's gravity, and the gravity changed since (reported
-        // again only if refused for another reason).
-        let refused_as = item.10.filter(|r| same_desc(&r.desc, &kept));
+        // Whether the sphere's own components are as they were when it was refused.
+        let own_same = |r: &RejectedSphere| match (&r.own, &own) {
+            (Some(then), Some(now)) => same_desc(then, now),
+            (None, None) => same_desc(&r.desc, &desc),
+            _ => false,
+        };
+        // Still the same invalid description: already reported (a child's refusal not of its
+        // place, whatever its parent's place). Tried again if it was refused for its force's
+        // sum with the world's gravity, and the gravity changed since (reported again only if
+        // refused for another reason).
+        let refused_as = item.10.filter(|r| {
+            own_same(r)
+                && (same_desc(&r.desc, &desc)
+                    || (r.own.is_some()
+                        && !matches!(r.error.field, Field::Position | Field::Tether)))
+        });
         if refused_as.is_some_and(|r| r.gravity.is_none_or(|g| same_bits(g, gravity))) {
             continue;
         }
@@ -501,18 +518,25 @@ pub(crate) fn prepare(
                     e.try_remove::<RejectedSphere>();
                 }
             }
+            // Refused again for the same, its own components unchanged (gravity changed, or a
+            // child's parent moved it): kept, not reported again.
             Err(error)
-                if refused_as.is_some_and(|r| {
-                    (r.error.field, r.error.reason) == (error.field, error.reason)
+                if item.10.is_some_and(|r| {
+                    own_same(r) && (r.error.field, r.error.reason) == (error.field, error.reason)
                 }) =>
             {
+                let gravity = match item.10.and_then(|r| r.gravity) {
+                    Some(_) => Some(gravity),
+                    None => refused_for_gravity(&desc, gravity).then_some(gravity),
+                };
                 commands.entity(entity).try_insert(RejectedSphere {
                     error,
-                    desc: kept,
-                    gravity: Some(gravity),
+                    desc,
+                    own,
+                    gravity,
                 });
             }
-            Err(error) => reject(&mut commands, entity, kept, error),
+            Err(error) => reject(&mut commands, entity, desc, own, error),
         }
     }
 }
@@ -589,6 +613,7 @@ pub(crate) fn step(
             .try_insert(RejectedSphere {
                 error: error.clone(),
                 desc: body.desc().clone(),
+                own: None,
                 // Tried again when gravity changes only if its force's sum with this gravity
                 // is what ran away (a gravity the game set since it joined): else its motion
                 // did, and its components must change.

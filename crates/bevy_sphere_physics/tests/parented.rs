@@ -411,3 +411,54 @@ fn a_sphere_under_a_disabled_parent_joins_through_that_parent() {
     }
     assert_eq!(position(&app, sphere), DVec3::new(5.0, 1.0, 0.0));
 }
+
+#[test]
+fn regression_a_child_refused_for_its_string_joins_when_its_parent_brings_it_in_reach() {
+    // Refused because its parent put it beyond its string (a refusal of its place): tried
+    // again as the parent moves, reported once, and taken once the parent brings it within
+    // the string's length.
+    #[derive(Component)]
+    struct Cart;
+    #[derive(Resource, Default)]
+    struct Reports(u32);
+    let mut app = app(SpherePhysicsPlugin::default());
+    app.init_resource::<Reports>().add_systems(
+        Update,
+        (
+            |mut carts: Query<&mut Transform, With<Cart>>| {
+                for mut cart in &mut carts {
+                    cart.translation.x = (cart.translation.x + 0.25).min(3.0);
+                }
+            },
+            |mut rejected: MessageReader<SphereRejected>, mut reports: ResMut<Reports>| {
+                reports.0 += rejected.read().count() as u32;
+            },
+        ),
+    );
+    let cart = app.world_mut().spawn((Cart, Transform::default())).id();
+    let sphere = app
+        .world_mut()
+        .spawn((
+            SphereBody::new(0.1),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+            Tethered {
+                anchor: DVec3::new(3.0, 1.5, 0.0),
+                length: 0.6,
+            },
+            ChildOf(cart),
+        ))
+        .id();
+    app.update();
+    app.update();
+    assert!(app.world().get::<RejectedSphere>(sphere).is_some());
+    for _ in 0..20 {
+        app.update();
+    }
+    assert_eq!(app.world().resource::<Reports>().0, 1);
+    assert!(app.world().get::<RejectedSphere>(sphere).is_none());
+    let at = position(&app, sphere);
+    assert!(
+        (at - DVec3::new(3.0, 1.5, 0.0)).length() <= 0.6,
+        "joined at {at}"
+    );
+}

@@ -54,6 +54,29 @@ fn assert_drawn_at_its_place(app: &App, sphere: Entity) {
     );
 }
 
+/// Spawns a sphere of `radius` at `at` in `parent`'s frame (its `Transform`'s translation).
+fn child(app: &mut App, parent: Entity, radius: f64, at: Vec3) -> Entity {
+    app.world_mut()
+        .spawn((
+            SphereBody::new(radius),
+            Transform::from_translation(at),
+            ChildOf(parent),
+        ))
+        .id()
+}
+
+/// An entity that spheres are put under, moved by a test's system.
+#[derive(Component)]
+struct Cart;
+
+/// How many `SphereRejected` messages have been read.
+#[derive(Resource, Default)]
+struct Reports(u32);
+
+fn count_reports(mut rejected: MessageReader<SphereRejected>, mut reports: ResMut<Reports>) {
+    reports.0 += rejected.read().count() as u32;
+}
+
 /// A parent translated, rotated a quarter turn about z and scaled twice.
 fn turned_parent() -> Transform {
     Transform::from_xyz(10.0, 0.0, 0.0)
@@ -69,14 +92,7 @@ fn a_sphere_under_a_moved_turned_and_scaled_parent_starts_and_falls_where_it_is_
     let parent = app.world_mut().spawn(turned_parent()).id();
     // (0, 1, 0) in the parent's frame: scaled to (0, 2, 0), turned to (-2, 0, 0), moved to
     // (8, 0, 0).
-    let sphere = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.1),
-            Transform::from_xyz(0.0, 1.0, 0.0),
-            ChildOf(parent),
-        ))
-        .id();
+    let sphere = child(&mut app, parent, 0.1, Vec3::new(0.0, 1.0, 0.0));
     app.update();
     app.update();
     let start = position(&app, sphere);
@@ -95,8 +111,6 @@ fn a_sphere_under_a_moved_turned_and_scaled_parent_starts_and_falls_where_it_is_
 
 #[test]
 fn a_parent_the_game_moves_does_not_carry_its_sphere_on_screen() {
-    #[derive(Component)]
-    struct Cart;
     let mut app = app(SpherePhysicsPlugin::default().interpolate(false));
     // The cart moves in `Update`, after the spheres' `Transform`s are written for the frame.
     app.add_systems(Update, |mut carts: Query<&mut Transform, With<Cart>>| {
@@ -106,14 +120,7 @@ fn a_parent_the_game_moves_does_not_carry_its_sphere_on_screen() {
         }
     });
     let cart = app.world_mut().spawn((Cart, Transform::default())).id();
-    let sphere = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.1),
-            Transform::from_xyz(1.0, 2.0, 3.0),
-            ChildOf(cart),
-        ))
-        .id();
+    let sphere = child(&mut app, cart, 0.1, Vec3::new(1.0, 2.0, 3.0));
     let mut joined_at = None;
     for _ in 0..20 {
         app.update();
@@ -141,14 +148,7 @@ fn a_sphere_parented_to_a_sphere_is_drawn_at_its_own_place() {
         ))
         .id();
     // Two deep, each a child of the one before, each 2 m beside its parent.
-    let middle = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.5),
-            Transform::from_xyz(0.0, 0.0, 2.0),
-            ChildOf(holder),
-        ))
-        .id();
+    let middle = child(&mut app, holder, 0.5, Vec3::new(0.0, 0.0, 2.0));
     let last = app
         .world_mut()
         .spawn((
@@ -238,14 +238,7 @@ fn a_parent_scaled_to_zero_leaves_its_sphere_simulated_and_its_transform_finite(
         .world_mut()
         .spawn(Transform::from_xyz(0.0, 5.0, 0.0).with_scale(Vec3::ZERO))
         .id();
-    let sphere = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.1),
-            Transform::from_xyz(3.0, 0.0, 0.0),
-            ChildOf(parent),
-        ))
-        .id();
+    let sphere = child(&mut app, parent, 0.1, Vec3::new(3.0, 0.0, 0.0));
     for _ in 0..10 {
         app.update();
     }
@@ -273,14 +266,7 @@ fn a_parent_turned_and_scaled_unevenly_draws_its_sphere_at_its_place() {
                 .with_scale(Vec3::new(0.5, 2.0, 3.0)),
         )
         .id();
-    let sphere = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.1),
-            Transform::from_xyz(1.0, -1.0, 0.5),
-            ChildOf(parent),
-        ))
-        .id();
+    let sphere = child(&mut app, parent, 0.1, Vec3::new(1.0, -1.0, 0.5));
     app.update();
     app.update();
     // Where Bevy puts the sphere's own origin under that parent.
@@ -319,14 +305,7 @@ fn a_sphere_taken_off_its_parent_in_update_is_drawn_at_its_place_that_frame() {
         },
     );
     let parent = app.world_mut().spawn(turned_parent()).id();
-    let sphere = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.1),
-            Transform::from_xyz(0.0, 1.0, 0.0),
-            ChildOf(parent),
-        ))
-        .id();
+    let sphere = child(&mut app, parent, 0.1, Vec3::new(0.0, 1.0, 0.0));
     for _ in 0..3 {
         app.update();
     }
@@ -341,10 +320,6 @@ fn a_sphere_taken_off_its_parent_in_update_is_drawn_at_its_place_that_frame() {
 fn regression_a_rejected_child_of_a_moving_parent_is_reported_once() {
     // Rejected once for its radius; its parent, moved at every frame, changes where it would
     // join, which is not a change of the sphere's own (it was reported again at every step).
-    #[derive(Component)]
-    struct Cart;
-    #[derive(Resource, Default)]
-    struct Reports(u32);
     let mut app = app(SpherePhysicsPlugin::default());
     app.init_resource::<Reports>().add_systems(
         Update,
@@ -354,20 +329,11 @@ fn regression_a_rejected_child_of_a_moving_parent_is_reported_once() {
                     cart.translation.x += 0.25;
                 }
             },
-            |mut rejected: MessageReader<SphereRejected>, mut reports: ResMut<Reports>| {
-                reports.0 += rejected.read().count() as u32;
-            },
+            count_reports,
         ),
     );
     let cart = app.world_mut().spawn((Cart, Transform::default())).id();
-    let sphere = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(-1.0),
-            Transform::from_xyz(0.0, 1.0, 0.0),
-            ChildOf(cart),
-        ))
-        .id();
+    let sphere = child(&mut app, cart, -1.0, Vec3::new(0.0, 1.0, 0.0));
     for _ in 0..20 {
         app.update();
     }
@@ -398,14 +364,7 @@ fn a_sphere_under_a_disabled_parent_joins_through_that_parent() {
             bevy::ecs::entity_disabling::Disabled,
         ))
         .id();
-    let sphere = app
-        .world_mut()
-        .spawn((
-            SphereBody::new(0.1),
-            Transform::from_xyz(0.0, 1.0, 0.0),
-            ChildOf(parent),
-        ))
-        .id();
+    let sphere = child(&mut app, parent, 0.1, Vec3::new(0.0, 1.0, 0.0));
     for _ in 0..3 {
         app.update();
     }
@@ -417,10 +376,6 @@ fn regression_a_child_refused_for_its_string_joins_when_its_parent_brings_it_in_
     // Refused because its parent put it beyond its string (a refusal of its place): tried
     // again as the parent moves, reported once, and taken once the parent brings it within
     // the string's length.
-    #[derive(Component)]
-    struct Cart;
-    #[derive(Resource, Default)]
-    struct Reports(u32);
     let mut app = app(SpherePhysicsPlugin::default());
     app.init_resource::<Reports>().add_systems(
         Update,
@@ -430,9 +385,7 @@ fn regression_a_child_refused_for_its_string_joins_when_its_parent_brings_it_in_
                     cart.translation.x = (cart.translation.x + 0.25).min(3.0);
                 }
             },
-            |mut rejected: MessageReader<SphereRejected>, mut reports: ResMut<Reports>| {
-                reports.0 += rejected.read().count() as u32;
-            },
+            count_reports,
         ),
     );
     let cart = app.world_mut().spawn((Cart, Transform::default())).id();

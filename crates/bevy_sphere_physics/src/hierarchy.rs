@@ -14,7 +14,7 @@ use crate::components::translation;
 
 /// The most ancestors followed up from a sphere: a chain longer than this (or a loop of
 /// `ChildOf`s, which Bevy does not forbid) is cut there, rather than followed for ever.
-const MAX_DEPTH: usize = 1024;
+pub(crate) const MAX_DEPTH: usize = 1024;
 
 /// A `Transform` as an `f64` affine map.
 fn affine(transform: &Transform) -> DAffine3 {

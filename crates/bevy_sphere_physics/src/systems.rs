@@ -13,7 +13,7 @@ use sphere_physics::{Body, BodyId, Field, SphereDesc, Tether, WorldError};
 
 use crate::components::*;
 use crate::events::{SphereCollision, SphereHit, SphereRejected};
-use crate::hierarchy::{Places, frame_of, local_translation};
+use crate::hierarchy::{MAX_DEPTH, Places, frame_of, local_translation};
 use crate::resources::{
     SpherePhysicsClock, SpherePhysicsDiagnostics, SpherePhysicsWorld, SphereShownTime,
 };
@@ -1007,7 +1007,7 @@ impl Showing<'_> {
             for (depth, entity, _) in order.iter_mut() {
                 let mut up = hierarchy.get(*entity).ok().and_then(|(_, parent)| parent);
                 while let Some(parent) = up
-                    && *depth < 1024
+                    && *depth < MAX_DEPTH
                 {
                     *depth += 1;
                     up = hierarchy.get(parent.parent()).ok().and_then(|(_, p)| p);

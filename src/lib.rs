@@ -28,7 +28,10 @@ use bevy::state::app::StatesPlugin;
 use bevy_sphere_physics::SpherePhysicsPlugin;
 
 pub use controls::{Autopilot, LabAction, LabUi};
-pub use scenes::{ActiveScene, LabAppExt, LabPersistent, LabScene, LabSceneSystems, LabScenes};
+pub use scenes::{
+    ActiveScene, LabAppExt, LabPersistent, LabScene, LabSceneSystems, LabScenes,
+    MAX_FIXED_STEPS_PER_FRAME,
+};
 pub use screenshot::{
     FrameCaptured, RenderReady, ScreenshotRequested, ScreenshotSettings, ScreenshotStatus,
 };

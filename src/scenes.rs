@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Duration;
 
 use bevy::ecs::system::ScheduleSystem;
 use bevy::prelude::*;
@@ -37,6 +38,13 @@ impl ActiveScene {
         }
     }
 }
+
+/// The most fixed steps the lab runs in one frame. Bevy catches up on at most 0.25 s of time
+/// a frame, which with a scene's `dt` of 1e-6 s (the smallest the lab takes) would be 250 000
+/// steps in a frame, the window frozen for seconds: for steps shorter than 0.5 ms the lab
+/// catches up on no more than this many steps' time a frame, and the scene runs slower than
+/// real time. (Until the sixty-second session it froze.)
+pub const MAX_FIXED_STEPS_PER_FRAME: u32 = 500;
 
 /// A scene's entry in the chooser (the tutorial's `SceneAttribute`) and the physics it runs
 /// with.
@@ -254,11 +262,18 @@ impl LabAppExt for App {
         let schedule = OnEnter(ActiveScene::scene(scene.id.clone()));
         let reset = move |mut commands: Commands,
                           mut fixed: ResMut<Time<Fixed>>,
+                          mut virtual_time: ResMut<Time<Virtual>>,
                           mut clock: ResMut<SpherePhysicsClock>| {
             commands.queue(
                 ResetSpherePhysics::new(scene.settings.clone()).restitution(scene.restitution),
             );
             fixed.set_timestep_seconds(scene.dt);
+            // At most `MAX_FIXED_STEPS_PER_FRAME` steps a frame (a scene of short steps runs
+            // slower than real time rather than freezing the window), and Bevy's default
+            // catch-up of 0.25 s a frame for longer steps.
+            virtual_time.set_max_delta(Duration::from_secs_f64(
+                (MAX_FIXED_STEPS_PER_FRAME as f64 * scene.dt).min(0.25),
+            ));
             // A scene (or a restart) starts running, with no single steps left over.
             *clock = SpherePhysicsClock::default();
         };

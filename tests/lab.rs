@@ -1144,3 +1144,37 @@ fn regression_the_default_scene_folder_is_this_packages() {
     assert_eq!(scene_folder_given(None), ours);
     assert_eq!(default_scene_folder(), ours);
 }
+
+#[test]
+fn regression_a_scene_of_microsecond_steps_runs_a_bounded_number_of_them_a_frame() {
+    // Bevy catches up on up to 0.25 s a frame: with a scene's `dt` of 1e-6 s that was 250 000
+    // fixed steps in one frame, the window frozen for seconds.
+    let mut app = lab(LabPlugin {
+        scene_folder: None,
+        ..default()
+    });
+    app.add_lab_scene(
+        LabScene::new("fine", "Fine", "Steps of a microsecond.").dt(1e-6),
+        |mut commands: Commands| {
+            commands.spawn((SphereBody::new(0.1), Transform::default()));
+        },
+    );
+    app.update();
+    app.world_mut()
+        .write_message(LabAction::Load("fine".into()));
+    app.update();
+    app.update();
+    assert_eq!(state(&app), ActiveScene::scene("fine"));
+    // A slow frame: a quarter of a second.
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
+        250,
+    )));
+    let steps = |app: &App| app.world().resource::<SpherePhysicsDiagnostics>().steps;
+    let before = steps(&app);
+    app.update();
+    let taken = steps(&app) - before;
+    assert!(
+        (1..=u64::from(MAX_FIXED_STEPS_PER_FRAME)).contains(&taken),
+        "{taken} fixed steps in one frame"
+    );
+}

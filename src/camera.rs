@@ -116,7 +116,7 @@ fn orbit(
     scroll: Res<AccumulatedMouseScroll>,
     buttons: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
-    time: Res<Time>,
+    time: Res<Time<Real>>,
     ui: Res<LabUi>,
     mut egui: EguiContexts,
 ) {
@@ -139,7 +139,12 @@ fn orbit(
     }
     // The keys wait while the chooser is open or an egui text field has the keyboard.
     if !ui.chooser_open && !egui_wants_keys {
-        let rate = time.delta_secs() * 1.5;
+        // By the wall clock: the virtual time's frames are capped at a few steps' time in a
+        // scene of very short steps (`MAX_FIXED_STEPS_PER_FRAME`), and stand still while the
+        // lab waits for its shaders; the keys then moved the camera at a crawl, or not at all.
+        // (A frame held up for long, a shader compiled, turns it no more than a tenth of a
+        // second's worth.)
+        let rate = time.delta_secs().min(0.1) * 1.5;
         let axis = |neg, pos| f32::from(keys.pressed(pos)) - f32::from(keys.pressed(neg));
         turn.x -= axis(KeyCode::ArrowLeft, KeyCode::ArrowRight) * rate;
         turn.y -= axis(KeyCode::ArrowDown, KeyCode::ArrowUp) * rate;

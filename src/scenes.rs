@@ -43,8 +43,32 @@ impl ActiveScene {
 /// a frame, which with a scene's `dt` of 1e-6 s (the smallest the lab takes) would be 250 000
 /// steps in a frame, the window frozen for seconds: for steps shorter than 0.5 ms the lab
 /// catches up on no more than this many steps' time a frame, and the scene runs slower than
-/// real time. (Until the sixty-second session it froze.)
+/// real time. (Until the sixty-second session it froze; until the sixty-third, in the frame
+/// a scene was entered in, whose time was worked out under the last scene's catch-up.) The
+/// time of a frame's steps past this many is dropped.
 pub const MAX_FIXED_STEPS_PER_FRAME: u32 = 500;
+
+/// Fixed steps run in this frame, counted against [`MAX_FIXED_STEPS_PER_FRAME`].
+#[derive(Resource, Default)]
+pub(crate) struct FixedStepsThisFrame(u32);
+
+/// Starts the frame's count of fixed steps.
+pub(crate) fn start_frame_steps(mut steps: ResMut<FixedStepsThisFrame>) {
+    steps.0 = 0;
+}
+
+/// Counts a fixed step, and once the frame has run [`MAX_FIXED_STEPS_PER_FRAME`] of them drops
+/// the time left to step in it, which ends Bevy's loop of fixed steps for the frame.
+pub(crate) fn end_frame_steps_at_most(
+    mut steps: ResMut<FixedStepsThisFrame>,
+    mut fixed: ResMut<Time<Fixed>>,
+) {
+    steps.0 = steps.0.saturating_add(1);
+    if steps.0 >= MAX_FIXED_STEPS_PER_FRAME {
+        let left = fixed.overstep();
+        fixed.discard_overstep(left);
+    }
+}
 
 /// A scene's entry in the chooser (the tutorial's `SceneAttribute`) and the physics it runs
 /// with.
@@ -268,6 +292,9 @@ impl LabAppExt for App {
                 ResetSpherePhysics::new(scene.settings.clone()).restitution(scene.restitution),
             );
             fixed.set_timestep_seconds(scene.dt);
+            // Nothing of the last scene's time toward its next step is stepped in this one.
+            let left = fixed.overstep();
+            fixed.discard_overstep(left);
             // At most `MAX_FIXED_STEPS_PER_FRAME` steps a frame (a scene of short steps runs
             // slower than real time rather than freezing the window), and Bevy's default
             // catch-up of 0.25 s a frame for longer steps.

@@ -1146,6 +1146,129 @@ fn regression_the_default_scene_folder_is_this_packages() {
 }
 
 #[test]
+fn regression_a_scene_of_microsecond_steps_entered_in_a_slow_frame_runs_a_bounded_number_of_them() {
+    // The frame a scene is entered in had its time worked out under the last scene's catch-up
+    // (0.25 s), and the step left over from it was kept: entering a scene of 1e-6 s steps in
+    // a slow frame ran 250 000 steps in that frame. Steps of the last scene left over (a
+    // frame of 25 ms with steps of 1/60 s leaves 8.3 ms) were run in the new one too.
+    for dt in [1e-6, 1.0 / 60.0] {
+        let mut app = lab(LabPlugin {
+            scene_folder: None,
+            ..default()
+        });
+        app.add_lab_scene(
+            LabScene::new("fine", "Fine", "Steps of a microsecond.").dt(dt),
+            |mut commands: Commands| {
+                commands.spawn((SphereBody::new(0.1), Transform::default()));
+            },
+        );
+        app.add_lab_scene(
+            LabScene::new("coarse", "Coarse", "Steps of 1/60 s."),
+            |mut commands: Commands| {
+                commands.spawn((SphereBody::new(0.1), Transform::default()));
+            },
+        );
+        app.update();
+        app.world_mut()
+            .write_message(LabAction::Load("coarse".into()));
+        app.update();
+        app.update();
+        assert_eq!(state(&app), ActiveScene::scene("coarse"));
+        // Frames of 25 ms: a step of 1/60 s each, and 8.3 ms left over after the first.
+        app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
+            25,
+        )));
+        app.update();
+        app.update();
+        app.world_mut()
+            .write_message(LabAction::Load("fine".into()));
+        app.update();
+        // The scene is entered in a slow frame, of nearly a quarter of a second.
+        app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
+            245,
+        )));
+        let steps = |app: &App| app.world().resource::<SpherePhysicsDiagnostics>().steps;
+        let clock = |app: &App| app.world().resource::<Time<Fixed>>().elapsed();
+        let before = clock(&app);
+        app.update();
+        assert_eq!(state(&app), ActiveScene::scene("fine"));
+        // Counted from the scene's start.
+        let taken = steps(&app);
+        assert!(
+            taken <= u64::from(MAX_FIXED_STEPS_PER_FRAME),
+            "dt {dt}: {taken} fixed steps in the frame the scene was entered in"
+        );
+        if dt > 1e-3 {
+            // 245 ms of 1/60 s steps is 14 of them; with the 8.3 ms left over, 15.
+            assert_eq!(taken, 14, "dt {dt}: {taken} steps");
+        }
+        let ran = (clock(&app) - before).as_secs_f64();
+        assert!(
+            ran <= 0.245,
+            "dt {dt}: {ran} s of steps in a frame of 0.245 s"
+        );
+    }
+}
+
+#[cfg(feature = "render")]
+#[test]
+fn regression_the_camera_keys_turn_and_zoom_as_fast_in_a_scene_of_microsecond_steps() {
+    // The arrow keys and `-` / `=` turned and zoomed by the frame's virtual time, which the
+    // lab caps at `MAX_FIXED_STEPS_PER_FRAME` steps' time a frame: in a scene of 1e-6 s steps
+    // the keys moved the camera at 3% of their speed, and seemed to do nothing.
+    let held = |dt: f64, key: KeyCode| -> sphere_lab::camera::OrbitCamera {
+        let mut app = lab(LabPlugin {
+            scene_folder: None,
+            ..default()
+        });
+        app.init_resource::<bevy_egui::EguiUserTextures>()
+            .add_plugins(sphere_lab::camera::OrbitCameraPlugin);
+        app.add_lab_scene(
+            LabScene::new("s", "S", "One sphere.").dt(dt),
+            |mut commands: Commands| {
+                commands.spawn((SphereBody::new(0.1), Transform::default()));
+            },
+        );
+        app.update();
+        app.world_mut().write_message(LabAction::Load("s".into()));
+        app.update();
+        app.update();
+        assert_eq!(state(&app), ActiveScene::scene("s"));
+        app.world_mut().resource_mut::<LabUi>().chooser_open = false;
+        let camera = |app: &mut App| {
+            let mut q = app.world_mut().query::<&sphere_lab::camera::OrbitCamera>();
+            *q.single(app.world()).expect("one camera")
+        };
+        let before = camera(&mut app);
+        app.world_mut()
+            .resource_mut::<ButtonInput<KeyCode>>()
+            .press(key);
+        for _ in 0..30 {
+            app.update();
+        }
+        let after = camera(&mut app);
+        sphere_lab::camera::OrbitCamera {
+            target: after.target - before.target,
+            yaw: after.yaw - before.yaw,
+            pitch: after.pitch - before.pitch,
+            distance: after.distance / before.distance,
+        }
+    };
+    for key in [KeyCode::ArrowLeft, KeyCode::ArrowUp, KeyCode::Equal] {
+        let (coarse, fine) = (held(1.0 / 60.0, key), held(1e-6, key));
+        // Half a second held: 0.75 rad (yaw or pitch), or the distance times 0.9875^30.
+        let moved = |c: sphere_lab::camera::OrbitCamera| {
+            c.yaw.abs() + c.pitch.abs() + (1.0 - c.distance).abs()
+        };
+        assert!(moved(coarse) > 0.3, "{key:?}: {coarse:?}");
+        assert!(
+            (moved(fine) - moved(coarse)).abs() <= 1e-4 * moved(coarse),
+            "{key:?}: with steps of 1/60 s {coarse:?}, of 1e-6 s {fine:?}"
+        );
+    }
+}
+
+#[test]
 fn regression_a_scene_of_microsecond_steps_runs_a_bounded_number_of_them_a_frame() {
     // Bevy catches up on up to 0.25 s a frame: with a scene's `dt` of 1e-6 s that was 250 000
     // fixed steps in one frame, the window frozen for seconds.

@@ -112,7 +112,9 @@ pub struct Settings {
     /// [`World::remove_body`], or [`World::wake`]), when a fixed sphere touching it is added,
     /// changed or removed (a force set on a fixed sphere, which no force moves, is no change),
     /// and at the next step after gravity changes or sleeping is turned
-    /// off (until then [`Body::is_asleep`] still tells of the last step). A world whose
+    /// off (until then [`Body::is_asleep`] still tells of the last step). A body changed
+    /// through the world, and an awake body touching one added, changed or removed (dynamic
+    /// or fixed: the ball under it taken away, say), is calm from then on only. A world whose
     /// dynamic bodies are all asleep, with no fixed body moving, takes its steps without work
     /// ([`StepStats::quiet`]). [`Body::is_asleep`] and [`StepStats::asleep`] tell.
     pub sleep: Option<Sleep>,
@@ -406,6 +408,7 @@ impl World {
         for index in (0..gone.len()).filter(|&i| gone[i]) {
             if !self.bodies[index].is_fixed() {
                 self.sleeper.mark_to_wake(&self.bodies, index);
+                self.disturbed_at(index);
             }
         }
         self.sleeper.wake_now(&mut self.bodies);
@@ -444,8 +447,20 @@ impl World {
         } else {
             self.sleeper.wake_island_of(&mut self.bodies, index);
             // Awake, it is calm from now on only (moved, say, near a floor it would never
-            // reach before falling asleep with a calm it had gathered elsewhere).
+            // reach before falling asleep with a calm it had gathered elsewhere), and so are
+            // the awake bodies touching it (one resting on it, say).
             self.sleeper.reset(index);
+            self.disturbed_at(index);
+        }
+    }
+
+    /// Marks where the dynamic body at `index` is as disturbed, with sleeping on (see
+    /// `Sleeper::disturbed_at`).
+    fn disturbed_at(&mut self, index: usize) {
+        if self.settings.sleep.is_some() {
+            let body = &self.bodies[index];
+            let (centre, radius) = (body.position(), body.radius());
+            self.sleeper.disturbed_at(self.bodies.len(), centre, radius);
         }
     }
 
@@ -532,11 +547,16 @@ impl World {
             *slot(&mut body.desc) = previous;
             return Err(BodyError { id: Some(id), ..e }.into());
         }
-        if body.is_fixed() && field == Field::Position {
+        if field == Field::Position {
             // What touched it where it was (and, below, what touches it where it is).
             let (radius, sleeping) = (body.radius(), self.settings.sleep.is_some());
-            self.sleeper
-                .wake_around(&mut self.bodies, previous, radius, sleeping);
+            if body.is_fixed() {
+                self.sleeper
+                    .wake_around(&mut self.bodies, previous, radius, sleeping);
+            } else if sleeping {
+                self.sleeper
+                    .disturbed_at(self.bodies.len(), previous, radius);
+            }
         }
         if !unfelt {
             self.woken_by(index);

@@ -47,6 +47,7 @@
 pub mod body;
 mod broad_phase;
 pub mod contact;
+mod disturbed;
 mod dormant;
 pub mod generate;
 mod instant;

@@ -5,6 +5,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::Body;
+use crate::disturbed::Disturbed;
 use crate::solver::Solver;
 
 /// How near two spheres must be to count as touching when bodies are grouped to fall asleep
@@ -107,12 +108,9 @@ pub(crate) struct Sleeper {
     /// [`Sleeper::refused`]).
     before: Before,
     /// Where dynamic bodies were added, changed or removed through the world since the last
-    /// step, with sleeping on (centre, radius): the awake bodies touching one of them are
-    /// calm from the next step on only (see [`Sleeper::disturbed_at`]).
-    disturbed_places: Vec<(DVec3, f64)>,
-    /// More places than bodies were given since the last step: every awake body's calm
-    /// starts again.
-    disturbed_everywhere: bool,
+    /// step: the awake bodies touching one of those places are calm from then on only (see
+    /// [`Sleeper::disturbed_at`]).
+    disturbed: Disturbed,
 }
 
 /// The sleeper as it was before `before_step` woke every body.
@@ -161,72 +159,32 @@ impl Sleeper {
     }
 
     /// A dynamic sphere of `radius` at `centre` was added there, changed, or removed from
-    /// there, with sleeping on: the awake bodies touching it (see [`SLEEP_CONTACT`]) are calm
-    /// from the next step on only. One resting on a ball removed, moved or struck away had
-    /// kept the calm it gathered on it, and fell asleep in the air a step later (near enough
-    /// to a fixed sphere to seem to rest on it, or on the shoulder of a ball it was sliding off).
-    /// Looked at when the next step starts, for every place since the last at once: a game
-    /// may set many bodies' velocities between two steps.
+    /// there (in a world of `bodies` bodies): the awake bodies touching it (see
+    /// [`SLEEP_CONTACT`]) are calm from the next step on only. One resting on a ball removed,
+    /// moved or struck away had kept the calm it gathered on it, and fell asleep in the air a
+    /// step later (near enough to a fixed sphere to seem to rest on it, or on the shoulder of
+    /// a ball it was sliding off). Looked at in [`Sleeper::after_step`], by each awake body
+    /// calm in that step (which a calm body leaves by less than the sleeping speed carries
+    /// it), for every place since the last step at once: a game may set many bodies'
+    /// velocities between two steps. Kept with sleeping off too, for a step after it is
+    /// turned on again.
     pub fn disturbed_at(&mut self, bodies: usize, centre: DVec3, radius: f64) {
-        if self.disturbed_everywhere {
-            return;
-        }
-        if self.disturbed_places.len() > bodies.saturating_add(64) {
-            self.disturbed_places.clear();
-            self.disturbed_everywhere = true;
-            return;
-        }
-        self.disturbed_places.push((centre, radius));
+        self.disturbed.add(bodies, centre, radius);
     }
 
-    /// Starts again the calm of each awake body touching a place of [`Sleeper::disturbed_at`],
-    /// and forgets the places.
-    fn calm_anew_where_disturbed(&mut self, bodies: &[Body]) {
-        if std::mem::take(&mut self.disturbed_everywhere) {
-            for state in &mut self.states {
-                state.calm = 0.0;
-            }
-            return;
-        }
-        if self.disturbed_places.is_empty() {
-            return;
-        }
-        let places = &mut self.disturbed_places;
-        // By their lowest x, so that each body looks only at the places level with it.
-        places.sort_unstable_by(|a, b| (a.0.x - a.1).total_cmp(&(b.0.x - b.1)));
-        let widest = places.iter().fold(0.0f64, |w, p| w.max(p.1));
-        for (body, state) in bodies.iter().zip(&mut self.states) {
-            // Asleep it has no calm, fixed it never sleeps, and a calm of 0 has nothing to lose.
-            if state.calm == 0.0 || body.asleep || body.is_fixed() {
-                continue;
-            }
-            let (x, reach) = (body.position().x, body.radius() * (1.0 + SLEEP_CONTACT));
-            let from = places.partition_point(|p| p.0.x - p.1 < x - reach - 2.0 * widest);
-            for &(centre, radius) in &places[from..] {
-                if centre.x - radius > x + reach {
-                    break;
-                }
-                if gap(body, centre, radius) <= SLEEP_CONTACT * body.radius() {
-                    state.calm = 0.0;
-                    break;
-                }
-            }
-        }
-        places.clear();
-    }
-
-    /// Before a step: starts again the calm of the awake bodies touching a dynamic body
-    /// changed since the last step (see [`Sleeper::disturbed_at`]), and wakes every body if
-    /// sleeping is off or gravity changed. Returns whether the step has nothing to do (see
-    /// `quiet`). If the step is then refused, [`Sleeper::refused`] puts back what this
-    /// changed, but for those calms (the changes were made, whatever the step does).
+    /// Before a step: wakes every body if sleeping is off or gravity changed. Returns whether
+    /// the step has nothing to do (see `quiet`). If the step is then refused,
+    /// [`Sleeper::refused`] puts back what this changed.
     pub fn before_step(
         &mut self,
         bodies: &mut [Body],
         sleep: Option<Sleep>,
         gravity: DVec3,
     ) -> bool {
-        self.calm_anew_where_disturbed(bodies);
+        if sleep.is_none() {
+            // Taken with sleeping off: no calm to start again after it.
+            self.disturbed.clear();
+        }
         self.before.changed = false;
         let changes = match sleep {
             None => self.gravity.is_some(),
@@ -330,6 +288,11 @@ impl Sleeper {
         self.wake.clear();
         let mut ready = false;
         let (mut moving, mut dynamic) = (false, only.map_or(0, |(_, left_out)| left_out as usize));
+        let disturbed = !self.disturbed.is_empty();
+        if disturbed {
+            // A body calm in this step moved by less than the sleeping speed carries it.
+            self.disturbed.prepare(SLEEP_CONTACT, sleep.speed * dt);
+        }
         let all = only.is_none().then_some(0..bodies.len());
         let taken = only.map(|(indices, _)| indices.iter().map(|&i| i as usize));
         for index in all.into_iter().flatten().chain(taken.into_iter().flatten()) {
@@ -351,12 +314,25 @@ impl Sleeper {
                 // speed) is not at rest.
                 && body.acceleration(gravity) != DVec3::ZERO
             {
-                // Calm this step: `calm > 0` from here on (see `ready_to_sleep`).
-                state.calm += dt;
-                ready |= ready_to_sleep(state, sleep);
+                // Touching a body changed through the world: calm from the next step on. (A
+                // calm of 0, a body new or changed itself, has nothing to lose: its calm
+                // starts with this step, as it did before the sixty-third session.)
+                if disturbed
+                    && state.calm > 0.0
+                    && self.disturbed.touches(body.position(), body.radius())
+                {
+                    state.calm = 0.0;
+                } else {
+                    // Calm this step: `calm > 0` from here on (see `ready_to_sleep`).
+                    state.calm += dt;
+                    ready |= ready_to_sleep(state, sleep);
+                }
             } else {
                 state.calm = 0.0;
             }
+        }
+        if disturbed {
+            self.disturbed.clear();
         }
         self.wake_islands(bodies);
         let before = self.asleep;

@@ -454,14 +454,11 @@ impl World {
         }
     }
 
-    /// Marks where the dynamic body at `index` is as disturbed, with sleeping on (see
-    /// `Sleeper::disturbed_at`).
+    /// Marks where the dynamic body at `index` is as disturbed (see `Sleeper::disturbed_at`).
     fn disturbed_at(&mut self, index: usize) {
-        if self.settings.sleep.is_some() {
-            let body = &self.bodies[index];
-            let (centre, radius) = (body.position(), body.radius());
-            self.sleeper.disturbed_at(self.bodies.len(), centre, radius);
-        }
+        let body = &self.bodies[index];
+        let (centre, radius) = (body.position(), body.radius());
+        self.sleeper.disturbed_at(self.bodies.len(), centre, radius);
     }
 
     /// The body with this id.
@@ -553,7 +550,7 @@ impl World {
             if body.is_fixed() {
                 self.sleeper
                     .wake_around(&mut self.bodies, previous, radius, sleeping);
-            } else if sleeping {
+            } else {
                 self.sleeper
                     .disturbed_at(self.bodies.len(), previous, radius);
             }

@@ -125,7 +125,9 @@ pub trait Scenario {
     }
     /// Like [`Scenario::run_with_extra`], with the wall time in seconds the scenario spent
     /// on its own checks between the engine's steps, which is not the engine's cost (the
-    /// report takes it off).
+    /// report takes it off). A scenario implements [`Scenario::run`],
+    /// [`Scenario::run_with_extra`] or this one, and with this one `run_with_extra` too (each
+    /// default calls another).
     fn run_checked(
         &self,
         scene: &Scene,
@@ -391,6 +393,16 @@ impl Scenario for Gas {
     }
     fn duration(&self) -> f64 {
         10.0
+    }
+    fn run_with_extra(
+        &self,
+        scene: &Scene,
+        engine: &mut dyn Engine,
+        dt: f64,
+        steps: u64,
+    ) -> (f64, Option<f64>) {
+        let (error, extra, _) = self.run_checked(scene, engine, dt, steps);
+        (error, extra)
     }
     fn run_checked(
         &self,

@@ -261,3 +261,47 @@ fn the_plot_breaks_a_series_line_at_a_failed_run() {
     ]);
     assert_eq!(svg.matches("<polyline").count(), 2, "{svg}");
 }
+
+/// An engine whose spheres fly on through one another and through the walls, energy and
+/// momentum kept.
+struct Ghost(Scene, f64);
+
+impl Engine for Ghost {
+    fn step(&mut self) {
+        let dt = self.1;
+        for s in &mut self.0.spheres {
+            s.position += s.velocity * dt;
+        }
+    }
+    fn count(&self) -> usize {
+        self.0.spheres.len()
+    }
+    fn position(&self, i: usize) -> DVec3 {
+        self.0.spheres[i].position
+    }
+    fn velocity(&self, i: usize) -> DVec3 {
+        self.0.spheres[i].velocity
+    }
+}
+
+#[test]
+fn the_gas_in_a_box_sees_collisions_missed_where_its_energy_cannot() {
+    // Its energy drift, the error, is exact for an engine that misses every collision: the
+    // deepest overlap beside it is what shows them (found by review, sixty-third session).
+    let gas = scenarios()
+        .into_iter()
+        .find(|s| s.name().contains("in a box"))
+        .expect("the gas in a box");
+    let scene = gas.scene();
+    let dt = 1.0 / 60.0;
+    let mut ghost = Ghost(scene.clone(), dt);
+    let (error, deepest, _) = gas.run_checked(&scene, &mut ghost, dt, 60);
+    assert_eq!(error, 0.0);
+    let deepest = deepest.expect("the deepest overlap");
+    assert!(deepest > 0.5, "{deepest}");
+    // Ours meets and parts without overlapping.
+    let mut ours = Ours::new(&scene, ToiMethod::Exact, dt);
+    let (error, deepest, _) = gas.run_checked(&scene, &mut ours, dt, 60);
+    assert!(error < 1e-12, "{error:e}");
+    assert_eq!(deepest, Some(0.0));
+}

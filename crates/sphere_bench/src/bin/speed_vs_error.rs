@@ -189,13 +189,21 @@ fn findings(results: &[Outcome], missed: &[(String, [Option<f64>; 3])]) -> Strin
     // The gas in a box's deepest overlap: what would show a collision missed.
     if let Some(outcome) = results.iter().find(|o| o.name.contains("in a box")) {
         let deepest = |prefix: &str| {
-            outcome
+            let extras = outcome
                 .points
                 .iter()
                 .filter(|p| p.engine.starts_with(prefix))
-                .filter_map(|p| p.extra)
+                .filter_map(|p| p.extra);
+            let failed = extras.clone().filter(|x| x.is_nan()).count();
+            let deepest = extras
+                .filter(|x| !x.is_nan())
                 .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
-                .map_or("-".to_owned(), |x| format!("{x:.1e}"))
+                .map_or("-".to_owned(), |x| format!("{x:.1e}"));
+            if failed > 0 {
+                format!("{deepest} ({failed} runs failed)")
+            } else {
+                deepest
+            }
         };
         let _ = writeln!(
             out,

@@ -1,19 +1,35 @@
-//! Where dynamic bodies were added, changed or removed through the world since the last step:
-//! the awake bodies touching one of those places are calm from then on only (see
+//! Where bodies were added, changed or removed through the world since the last step: the
+//! awake bodies touching one of those places are calm from then on only (see
 //! [`Sleeper::disturbed_at`](crate::sleep::Sleeper::disturbed_at)). The places are found
-//! again through a hash grid over them, so that a step after many changes (a game setting
-//! the velocities of thousands of bodies between two steps) costs each awake body a few cells'
-//! look, not a look at every place.
+//! again through hash grids over them, one for each size of place within a factor of two, so
+//! that a step after many changes (a game setting the velocities of thousands of bodies
+//! between two steps) costs each awake body a look at a few cells of each size, not at every
+//! place, whatever the sizes.
 
 use glam::DVec3;
 
-/// Past this many places the grid is used; up to it each body looks at every place.
+/// Past this many places the grids are used; up to it each body looks at every place.
 const FEW: usize = 16;
 
-/// A body's reach spanning more cells than this looks at every place instead of the grid's.
-const MAX_CELLS: i64 = 64;
+/// A body's reach spanning more cells than this in one size's grid looks at every place of
+/// that size instead (a body far larger than those places).
+const MAX_CELLS: i64 = 343;
 
-/// The places, and a grid over them, laid out when a body first asks after
+/// The places of one size (radii within a factor of two) and their grid.
+#[derive(Clone, Copy, Debug)]
+struct Size {
+    /// The places' `log2(radius)`, rounded down.
+    exponent: i32,
+    /// The largest radius among them.
+    widest: f64,
+    /// The grid's cell size: as wide as the reach of a body of that radius, both ways.
+    cell: f64,
+    /// The places, as a range of `Disturbed::by_size`.
+    from: usize,
+    to: usize,
+}
+
+/// The places, and the grids over them, laid out when a body first asks after
 /// [`Disturbed::prepare`].
 #[derive(Debug, Default)]
 pub(crate) struct Disturbed {
@@ -26,26 +42,23 @@ pub(crate) struct Disturbed {
     /// the body's radius, and in the world's units (set by [`Disturbed::prepare`]).
     contact: f64,
     margin: f64,
-    /// Whether the grid below is laid out over the places.
+    /// Whether the grids below are laid out over the places.
     laid_out: bool,
-    /// The grid's cell size (0 while the places are few and looked at one by one), and the
-    /// largest radius of a place in it.
-    cell: f64,
-    widest: f64,
-    /// Each place in the grid by the cell of its centre, `(cell key, place)`, sorted by key.
+    /// The sizes of the places, smallest first (none while the places are few and looked at
+    /// one by one).
+    sizes: Vec<Size>,
+    /// The places by size: `(exponent, place)`, sorted.
+    by_size: Vec<(i32, u32)>,
+    /// Each place by its size and the cell of its centre, `(key, place)`, sorted by key.
     cells: Vec<(u64, u32)>,
-    /// Places more than twice the median's radius: looked at by every body.
-    big: Vec<u32>,
     /// A box around every place grown by the margin and by its radius: a body whose reach
     /// misses it touches none.
     bounds: (DVec3, DVec3),
-    /// Scratch: the places' radii, for their median.
-    radii: Vec<f64>,
 }
 
 impl Disturbed {
-    /// A dynamic sphere of `radius` at `centre` was added, changed or removed there, in a
-    /// world of `bodies` bodies.
+    /// A sphere of `radius` at `centre` was added, changed or removed there, in a world of
+    /// `bodies` bodies.
     pub fn add(&mut self, bodies: usize, centre: DVec3, radius: f64) {
         if self.everywhere {
             return;
@@ -67,8 +80,9 @@ impl Disturbed {
     /// Forgets every place.
     pub fn clear(&mut self) {
         self.places.clear();
+        self.sizes.clear();
+        self.by_size.clear();
         self.cells.clear();
-        self.big.clear();
         self.everywhere = false;
         self.laid_out = false;
     }
@@ -81,14 +95,14 @@ impl Disturbed {
         self.laid_out = false;
     }
 
-    /// Lays out the grid over the places: each place by the cell of its centre, a body
-    /// looking at the cells its reach grown by the largest radius in the grid meets (8 for a
-    /// body of the places' size).
+    /// Lays out a grid over the places of each size: each place in the cell of its centre, a
+    /// body looking at the cells its reach grown by the size's largest radius meets (8 for a
+    /// body of that size, more for a larger one).
     fn lay_out(&mut self) {
         self.laid_out = true;
+        self.sizes.clear();
+        self.by_size.clear();
         self.cells.clear();
-        self.big.clear();
-        self.cell = 0.0;
         let grown = |&(centre, radius): &(DVec3, f64)| {
             let reach = DVec3::splat(radius + self.margin);
             (centre - reach, centre + reach)
@@ -102,26 +116,31 @@ impl Disturbed {
         if self.everywhere || self.places.len() <= FEW {
             return;
         }
-        self.radii.clear();
-        self.radii.extend(self.places.iter().map(|p| p.1));
-        let middle = self.radii.len() / 2;
-        let (_, &mut median, _) = self.radii.select_nth_unstable_by(middle, f64::total_cmp);
-        self.widest = 0.0;
-        for (k, &(_, radius)) in self.places.iter().enumerate() {
-            if radius > 2.0 * median {
-                self.big.push(k as u32);
-            } else {
-                self.widest = self.widest.max(radius);
-            }
+        self.by_size.extend(
+            (0..self.places.len() as u32).map(|k| (exponent(self.places[k as usize].1), k)),
+        );
+        self.by_size.sort_unstable();
+        let mut from = 0;
+        while from < self.by_size.len() {
+            let exponent = self.by_size[from].0;
+            let to = from + self.by_size[from..].partition_point(|p| p.0 == exponent);
+            let widest = self.by_size[from..to]
+                .iter()
+                .fold(0.0f64, |w, p| w.max(self.places[p.1 as usize].1));
+            let cell = (2.0 * ((2.0 + self.contact) * widest + self.margin)).max(f64::MIN_POSITIVE);
+            self.sizes.push(Size {
+                exponent,
+                widest,
+                cell,
+                from,
+                to,
+            });
+            from = to;
         }
-        // Cells as wide as the reach of a body of the places' size, both ways: it looks at
-        // 8 of them.
-        self.cell =
-            (2.0 * ((2.0 + self.contact) * self.widest + self.margin)).max(f64::MIN_POSITIVE);
-        for (k, &(centre, radius)) in self.places.iter().enumerate() {
-            if radius <= 2.0 * median {
-                let (low, _) = self.span(centre, 0.0);
-                self.cells.push((key(low[0], low[1], low[2]), k as u32));
+        for size in &self.sizes {
+            for &(_, k) in &self.by_size[size.from..size.to] {
+                let c = cell_of(self.places[k as usize].0, size.cell);
+                self.cells.push((key(size.exponent, c), k));
             }
         }
         self.cells.sort_unstable();
@@ -136,52 +155,57 @@ impl Disturbed {
         if !self.laid_out {
             self.lay_out();
         }
-        let reach = DVec3::splat(radius * (1.0 + self.contact));
+        let own = radius * (1.0 + self.contact);
         let (low, high) = self.bounds;
-        if (centre + reach).cmplt(low).any() || (centre - reach).cmpgt(high).any() {
+        if (centre + DVec3::splat(own)).cmplt(low).any()
+            || (centre - DVec3::splat(own)).cmpgt(high).any()
+        {
             return false;
         }
-        let near = |&(place, place_radius): &(DVec3, f64)| {
+        let near = |k: u32| {
+            let (place, place_radius) = self.places[k as usize];
             (centre - place).length() - radius - place_radius <= self.contact * radius + self.margin
         };
-        if self.cell == 0.0 {
-            return self.places.iter().any(near);
+        if self.sizes.is_empty() {
+            return (0..self.places.len() as u32).any(near);
         }
-        if self.big.iter().any(|&k| near(&self.places[k as usize])) {
-            return true;
-        }
-        // Every place of the grid touching the body has its centre within this reach.
-        let reach = radius * (1.0 + self.contact) + self.margin + self.widest;
-        let (low, high) = self.span(centre, reach);
-        if cell_count(low, high) > MAX_CELLS {
-            return self.places.iter().any(near);
-        }
-        let mut found = false;
-        for_each_cell(low, high, |key| {
-            if found {
-                return;
+        self.sizes.iter().any(|size| {
+            // Every place of this size touching the body has its centre within this reach.
+            let reach = own + self.margin + size.widest;
+            let grown = reach + 4.0 * f64::EPSILON * centre.abs().max_element();
+            let low = cell_of(centre - DVec3::splat(grown), size.cell);
+            let high = cell_of(centre + DVec3::splat(grown), size.cell);
+            if cell_count(low, high) > MAX_CELLS {
+                return self.by_size[size.from..size.to]
+                    .iter()
+                    .any(|&(_, k)| near(k));
             }
-            let from = self.cells.partition_point(|c| c.0 < key);
-            found = self.cells[from..]
-                .iter()
-                .take_while(|c| c.0 == key)
-                .any(|c| near(&self.places[c.1 as usize]));
-        });
-        found
+            let mut found = false;
+            for_each_cell(low, high, |c| {
+                if found {
+                    return;
+                }
+                let key = key(size.exponent, c);
+                let from = self.cells.partition_point(|e| e.0 < key);
+                found = self.cells[from..]
+                    .iter()
+                    .take_while(|e| e.0 == key)
+                    .any(|e| near(e.1));
+            });
+            found
+        })
     }
+}
 
-    /// The cells (lowest and highest, inclusive) of the box of half-size `reach` around
-    /// `centre`, grown by a few units in the last place of its coordinates (so that rounding
-    /// never leaves out a cell the box meets).
-    fn span(&self, centre: DVec3, reach: f64) -> ([i64; 3], [i64; 3]) {
-        let grown = reach + 4.0 * f64::EPSILON * centre.abs().max_element();
-        let cell = |x: f64| (x / self.cell).floor() as i64;
-        let (low, high) = (centre - DVec3::splat(grown), centre + DVec3::splat(grown));
-        (
-            [cell(low.x), cell(low.y), cell(low.z)],
-            [cell(high.x), cell(high.y), cell(high.z)],
-        )
-    }
+/// `log2(radius)` rounded down (radii are positive and finite).
+fn exponent(radius: f64) -> i32 {
+    radius.log2().floor().clamp(-2000.0, 2000.0) as i32
+}
+
+/// The cell of a point in a grid of cells `cell` wide (saturating far out).
+fn cell_of(point: DVec3, cell: f64) -> [i64; 3] {
+    let at = |x: f64| (x / cell).floor() as i64;
+    [at(point.x), at(point.y), at(point.z)]
 }
 
 /// How many cells span `low..=high` (saturating).
@@ -191,22 +215,24 @@ fn cell_count(low: [i64; 3], high: [i64; 3]) -> i64 {
     })
 }
 
-/// Calls `f` with the key of each cell of `low..=high` (at most [`MAX_CELLS`] of them).
-fn for_each_cell(low: [i64; 3], high: [i64; 3], mut f: impl FnMut(u64)) {
+/// Calls `f` with each cell of `low..=high` (at most [`MAX_CELLS`] of them).
+fn for_each_cell(low: [i64; 3], high: [i64; 3], mut f: impl FnMut([i64; 3])) {
     for x in low[0]..=high[0] {
         for y in low[1]..=high[1] {
             for z in low[2]..=high[2] {
-                f(key(x, y, z));
+                f([x, y, z]);
             }
         }
     }
 }
 
-/// A cell's key: its coordinates mixed (two cells may share one, which costs a look only).
-fn key(x: i64, y: i64, z: i64) -> u64 {
+/// A cell's key in the grid of one size: the size and coordinates mixed (two cells may share
+/// one, which costs a look only).
+fn key(exponent: i32, [x, y, z]: [i64; 3]) -> u64 {
     let mix = |v: i64, m: u64| (v as u64).wrapping_mul(m);
     let h = mix(x, 0x9E37_79B9_7F4A_7C15)
         ^ mix(y, 0xC2B2_AE3D_27D4_EB4F)
-        ^ mix(z, 0x1656_67B1_9E37_79F9);
+        ^ mix(z, 0x1656_67B1_9E37_79F9)
+        ^ mix(i64::from(exponent), 0xFF51_AFD7_ED55_8CCD);
     h ^ (h >> 29)
 }

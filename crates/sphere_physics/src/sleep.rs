@@ -158,8 +158,9 @@ impl Sleeper {
         &self.states
     }
 
-    /// A dynamic sphere of `radius` at `centre` was added there, changed, or removed from
-    /// there (in a world of `bodies` bodies): the awake bodies touching it (see
+    /// A sphere of `radius` at `centre` was added there, changed, or removed from there (in
+    /// a world of `bodies` bodies; a dynamic one, or a fixed one, whose neighbours asleep
+    /// [`Sleeper::wake_around`] wakes at once): the awake bodies touching it (see
     /// [`SLEEP_CONTACT`]) are calm from the next step on only. One resting on a ball removed,
     /// moved or struck away had kept the calm it gathered on it, and fell asleep in the air a
     /// step later (near enough to a fixed sphere to seem to rest on it, or on the shoulder of
@@ -172,6 +173,13 @@ impl Sleeper {
         self.disturbed.add(bodies, centre, radius);
     }
 
+    /// A step was taken with sleeping off: its bodies' calms start again once it is on (see
+    /// [`Sleeper::before_step`]), so the places of [`Sleeper::disturbed_at`] are done with.
+    /// (Not at the step's start: a refused step keeps them.)
+    pub fn stepped_without_sleeping(&mut self) {
+        self.disturbed.clear();
+    }
+
     /// Before a step: wakes every body if sleeping is off or gravity changed. Returns whether
     /// the step has nothing to do (see `quiet`). If the step is then refused,
     /// [`Sleeper::refused`] puts back what this changed.
@@ -181,10 +189,6 @@ impl Sleeper {
         sleep: Option<Sleep>,
         gravity: DVec3,
     ) -> bool {
-        if sleep.is_none() {
-            // Taken with sleeping off: no calm to start again after it.
-            self.disturbed.clear();
-        }
         self.before.changed = false;
         let changes = match sleep {
             None => self.gravity.is_some(),

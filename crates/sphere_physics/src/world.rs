@@ -408,8 +408,8 @@ impl World {
         for index in (0..gone.len()).filter(|&i| gone[i]) {
             if !self.bodies[index].is_fixed() {
                 self.sleeper.mark_to_wake(&self.bodies, index);
-                self.disturbed_at(index);
             }
+            self.disturbed_at(index);
         }
         self.sleeper.wake_now(&mut self.bodies);
         self.sleeper
@@ -444,6 +444,9 @@ impl World {
             let sleeping = self.settings.sleep.is_some();
             self.sleeper
                 .wake_around(&mut self.bodies, centre, radius, sleeping);
+            // And, with sleeping off now but on by the next step, the awake bodies touching it
+            // are calm from then on only.
+            self.disturbed_at(index);
         } else {
             self.sleeper.wake_island_of(&mut self.bodies, index);
             // Awake, it is calm from now on only (moved, say, near a floor it would never
@@ -454,7 +457,7 @@ impl World {
         }
     }
 
-    /// Marks where the dynamic body at `index` is as disturbed (see `Sleeper::disturbed_at`).
+    /// Marks where the body at `index` is as disturbed (see `Sleeper::disturbed_at`).
     fn disturbed_at(&mut self, index: usize) {
         let body = &self.bodies[index];
         let (centre, radius) = (body.position(), body.radius());
@@ -550,10 +553,9 @@ impl World {
             if body.is_fixed() {
                 self.sleeper
                     .wake_around(&mut self.bodies, previous, radius, sleeping);
-            } else {
-                self.sleeper
-                    .disturbed_at(self.bodies.len(), previous, radius);
             }
+            self.sleeper
+                .disturbed_at(self.bodies.len(), previous, radius);
         }
         if !unfelt {
             self.woken_by(index);
@@ -814,6 +816,8 @@ impl World {
                 stats.momentum = self.momentum();
             }
             stats.asleep = self.sleeper.asleep() as u32;
+        } else {
+            self.sleeper.stepped_without_sleeping();
         }
         stats.time = self.time;
         self.stats = stats;

@@ -173,3 +173,48 @@ fn regression_many_changes_between_steps_disturb_only_what_they_touch() {
         assert!(world.body(id).unwrap().is_asleep(), "{:?}", world.body(id));
     }
 }
+
+#[test]
+fn regression_a_support_taken_away_while_sleeping_is_off_then_a_step_refused_leaves_no_calm() {
+    // Found by review of the second mend: a step refused with sleeping off forgot the places
+    // (and put the calms back), and a fixed support removed with sleeping off (nothing
+    // asleep) reset no calm; sleeping on again, the ball on it fell asleep in the air.
+    let (mut world, _, upper) = stacked();
+    let asleep_at = steps_to_sleep(&mut world, upper);
+    for support in ["the floor", "the lower ball"] {
+        let (mut world, lower, upper) = stacked();
+        for _ in 1..asleep_at {
+            world.step(DT).unwrap();
+        }
+        let sleep = world.settings().sleep;
+        world.settings_mut().sleep = None;
+        let taken = if support == "the floor" {
+            let floor = world.bodies().iter().find(|b| b.radius() == FLOOR);
+            floor.unwrap().id()
+        } else {
+            lower
+        };
+        world.remove_body(taken).unwrap();
+        // A sphere far away at 1e308 m/s: a step of 2 s would take it past the finite range.
+        let runaway = world
+            .add_sphere(
+                SphereDesc::new(0.1)
+                    .at(DVec3::new(1.0e6, 0.0, 0.0))
+                    .moving(DVec3::new(1.0e308, 0.0, 0.0)),
+            )
+            .unwrap();
+        assert!(world.step(2.0).is_err(), "{support}: the step is refused");
+        world.remove_body(runaway).unwrap();
+        world.settings_mut().sleep = sleep;
+        for _ in 0..10 {
+            world.step(DT).unwrap();
+        }
+        let body = world.body(upper).unwrap();
+        assert!(
+            !body.is_asleep(),
+            "{support}: asleep at {}",
+            body.position()
+        );
+        assert!(body.position().y < 1.42, "{support}: {}", body.position());
+    }
+}

@@ -156,9 +156,11 @@ impl Disturbed {
             self.lay_out();
         }
         let own = radius * (1.0 + self.contact);
+        // Grown by the rounding allowance, as the grids' look is (an ulp at the threshold).
+        let bound = own + 4.0 * f64::EPSILON * (centre.abs().max_element() + own);
         let (low, high) = self.bounds;
-        if (centre + DVec3::splat(own)).cmplt(low).any()
-            || (centre - DVec3::splat(own)).cmpgt(high).any()
+        if (centre + DVec3::splat(bound)).cmplt(low).any()
+            || (centre - DVec3::splat(bound)).cmpgt(high).any()
         {
             return false;
         }
@@ -172,7 +174,7 @@ impl Disturbed {
         self.sizes.iter().any(|size| {
             // Every place of this size touching the body has its centre within this reach.
             let reach = own + self.margin + size.widest;
-            let grown = reach + 4.0 * f64::EPSILON * centre.abs().max_element();
+            let grown = reach + 4.0 * f64::EPSILON * (centre.abs().max_element() + reach);
             let low = cell_of(centre - DVec3::splat(grown), size.cell);
             let high = cell_of(centre + DVec3::splat(grown), size.cell);
             if cell_count(low, high) > MAX_CELLS {

@@ -107,8 +107,8 @@ pub(crate) struct Sleeper {
     /// What `before_step` changed, to be put back if the step is refused (see
     /// [`Sleeper::refused`]).
     before: Before,
-    /// Where dynamic bodies were added, changed or removed through the world since the last
-    /// step: the awake bodies touching one of those places are calm from then on only (see
+    /// Where bodies were added, changed or removed through the world since the last step:
+    /// the awake bodies touching one of those places are calm from then on only (see
     /// [`Sleeper::disturbed_at`]).
     disturbed: Disturbed,
 }

@@ -31,21 +31,10 @@ fn stacked() -> (World, BodyId, BodyId) {
     (world, lower, upper)
 }
 
-/// Steps until the upper ball falls asleep (at most 600); the steps taken.
-fn steps_to_sleep(world: &mut World, ball: BodyId) -> u32 {
-    for n in 1..=600 {
-        world.step(DT).unwrap();
-        if world.body(ball).unwrap().is_asleep() {
-            return n;
-        }
-    }
-    panic!("the ball never fell asleep: {:?}", world.body(ball))
-}
-
 #[test]
 fn regression_a_ball_whose_supporting_ball_goes_does_not_sleep_in_the_air() {
     let (mut world, _, upper) = stacked();
-    let asleep_at = steps_to_sleep(&mut world, upper);
+    let asleep_at = common::steps_to_sleep(&mut world, upper, DT);
     for change in [
         "removed",
         "removed with others",
@@ -82,7 +71,7 @@ fn regression_a_ball_whose_supporting_ball_goes_does_not_sleep_in_the_air() {
         // more than 8 cm in 10 steps.
         assert!(body.position().y < 1.42, "{change}: {}", body.position());
         // It lands on the floor, and sleeps there.
-        steps_to_sleep(&mut world, upper);
+        common::steps_to_sleep(&mut world, upper, DT);
         let y = world.body(upper).unwrap().position().y;
         assert!((y - 0.5).abs() < 1e-2, "{change}: asleep at y = {y}");
     }
@@ -94,7 +83,7 @@ fn regression_a_ball_whose_support_goes_while_sleeping_is_off_does_not_sleep_in_
     // removed while sleeping was off (and on again before the next step) left the ball on it
     // its calm.
     let (mut world, _, upper) = stacked();
-    let asleep_at = steps_to_sleep(&mut world, upper);
+    let asleep_at = common::steps_to_sleep(&mut world, upper, DT);
     let (mut world, lower, upper) = stacked();
     for _ in 1..asleep_at {
         world.step(DT).unwrap();
@@ -121,7 +110,7 @@ fn regression_many_changes_between_steps_disturb_only_what_they_touch() {
     let (mut world, lower, upper) = stacked();
     let asleep_at = {
         let (mut twin, _, upper) = stacked();
-        steps_to_sleep(&mut twin, upper)
+        common::steps_to_sleep(&mut twin, upper, DT)
     };
     // Forty balls resting apart on the floor, and 300 steered in a row far from them.
     let resting: Vec<BodyId> = (0..40)
@@ -180,7 +169,7 @@ fn regression_a_support_taken_away_while_sleeping_is_off_then_a_step_refused_lea
     // (and put the calms back), and a fixed support removed with sleeping off (nothing
     // asleep) reset no calm; sleeping on again, the ball on it fell asleep in the air.
     let (mut world, _, upper) = stacked();
-    let asleep_at = steps_to_sleep(&mut world, upper);
+    let asleep_at = common::steps_to_sleep(&mut world, upper, DT);
     for support in ["the floor", "the lower ball"] {
         let (mut world, lower, upper) = stacked();
         for _ in 1..asleep_at {

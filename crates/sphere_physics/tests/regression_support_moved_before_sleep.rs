@@ -31,21 +31,10 @@ fn ball_on_floor() -> (World, BodyId, BodyId) {
     (world, floor, ball)
 }
 
-/// Steps until the ball falls asleep (at most 600); the steps taken.
-fn steps_to_sleep(world: &mut World, ball: BodyId) -> u32 {
-    for n in 1..=600 {
-        world.step(DT).unwrap();
-        if world.body(ball).unwrap().is_asleep() {
-            return n;
-        }
-    }
-    panic!("the ball never fell asleep: {:?}", world.body(ball))
-}
-
 #[test]
 fn regression_a_ball_whose_floor_moves_away_does_not_sleep_in_the_air() {
     let (mut world, _, ball) = ball_on_floor();
-    let asleep_at = steps_to_sleep(&mut world, ball);
+    let asleep_at = common::steps_to_sleep(&mut world, ball, DT);
     for change in ["moved down 1 cm", "removed"] {
         let (mut world, floor, ball) = ball_on_floor();
         for _ in 1..asleep_at {
@@ -68,7 +57,7 @@ fn regression_a_ball_whose_floor_moves_away_does_not_sleep_in_the_air() {
         assert!(!body.is_asleep(), "{change}: asleep at {}", body.position());
         if change == "moved down 1 cm" {
             // It lands on the floor's new place, and sleeps there.
-            steps_to_sleep(&mut world, ball);
+            common::steps_to_sleep(&mut world, ball, DT);
             let y = world.body(ball).unwrap().position().y;
             assert!((y - 0.49).abs() < 1e-3, "asleep at y = {y}");
         } else {

@@ -262,30 +262,26 @@ fn findings(results: &[Outcome], missed: &[(String, [Option<f64>; 3])]) -> Strin
     out
 }
 
+/// The trimmed standard output of `program` run with `args`, if it ran, succeeded and said
+/// something.
+fn output_of(program: &str, args: &[&str]) -> Option<String> {
+    let out = std::process::Command::new(program)
+        .args(args)
+        .output()
+        .ok()?;
+    let text = String::from_utf8(out.stdout).ok()?;
+    let text = text.trim();
+    (out.status.success() && !text.is_empty()).then(|| text.to_owned())
+}
+
 /// The commit the report is made at (`git describe --always --dirty`), or "unknown".
 fn git_commit() -> String {
-    std::process::Command::new("git")
-        .args(["describe", "--always", "--dirty"])
-        .output()
-        .ok()
-        .filter(|out| out.status.success())
-        .and_then(|out| String::from_utf8(out.stdout).ok())
-        .map(|s| s.trim().to_owned())
-        .filter(|s| !s.is_empty())
-        .unwrap_or_else(|| "unknown".to_owned())
+    output_of("git", &["describe", "--always", "--dirty"]).unwrap_or_else(|| "unknown".into())
 }
 
 /// Today's date (UTC), as `date -u +%F` gives it, or "an unknown date".
 fn today() -> String {
-    std::process::Command::new("date")
-        .args(["-u", "+%F"])
-        .output()
-        .ok()
-        .filter(|out| out.status.success())
-        .and_then(|out| String::from_utf8(out.stdout).ok())
-        .map(|s| s.trim().to_owned())
-        .filter(|s| !s.is_empty())
-        .unwrap_or_else(|| "an unknown date".to_owned())
+    output_of("date", &["-u", "+%F"]).unwrap_or_else(|| "an unknown date".into())
 }
 
 fn colour(k: usize) -> &'static str {

@@ -4,7 +4,8 @@
 //! spheres among others hanging on strings, a crowd placed overlapping with no gravity, a
 //! crowd crushed together with a small collision budget, and
 //! the deepest overlap (also beyond the contact band) and centre of mass of a world, a world
-//! with sleeping on above a floor; and the property tests' configuration from a fixed seed.
+//! with sleeping on above a floor and the steps a ball takes to fall asleep there; and the
+//! property tests' configuration from a fixed seed.
 // Each test file uses part of this.
 #![allow(dead_code)]
 
@@ -423,4 +424,15 @@ pub fn sleeping_on_a_floor(floor: f64) -> (World, BodyId) {
         .add_sphere(SphereDesc::new(floor).at(DVec3::NEG_Y * floor).fixed())
         .unwrap();
     (world, id)
+}
+
+/// Steps `world` by `dt` until `ball` falls asleep (at most 600 steps); the steps taken.
+pub fn steps_to_sleep(world: &mut World, ball: BodyId, dt: f64) -> u32 {
+    for n in 1..=600 {
+        world.step(dt).unwrap();
+        if world.body(ball).unwrap().is_asleep() {
+            return n;
+        }
+    }
+    panic!("the ball never fell asleep: {:?}", world.body(ball))
 }

@@ -162,21 +162,33 @@ impl SplitMix64 {
 
 struct Lattice {
     min: [f64; 3],
-    cell: f64,
+    /// The cells' side along each axis (see [`Lattice::new`]).
+    step: [f64; 3],
     counts: [u64; 3],
 }
 
 impl Lattice {
     /// Cells of side `2 · radius · 1.1`, as many as fit in `min..max`, up to 2²¹ per axis (so
     /// that their number fits in a `u64`: a box that holds more uses only its lower corner).
+    /// A box a whole number of cells wide to within the rounding of its corners (four units in
+    /// the last place of their sizes) holds that number: 0.88 / 0.11000000000000001, the width
+    /// of eight cells of spheres of radius 0.05, is 7.999999999999999, and until the
+    /// sixty-fourth session such a box held seven, its spheres packed towards its lower corner.
+    /// Along such an axis the cells are made that much narrower, to fill the box exactly.
     fn new(min: [f64; 3], max: [f64; 3], radius: f64) -> Self {
         let cell = 2.0 * radius * 1.1;
+        let mut step = [cell; 3];
         let counts = std::array::from_fn(|k| {
-            ((max[k] - min[k]) / cell)
-                .floor()
-                .clamp(0.0, f64::from(1u32 << 21)) as u64
+            let width = max[k] - min[k];
+            let mut cells = (width / cell).floor();
+            let rounding = 4.0 * f64::EPSILON * (min[k].abs() + max[k].abs());
+            if (cells + 1.0) * cell - width <= rounding {
+                cells += 1.0;
+                step[k] = width / cells;
+            }
+            cells.clamp(0.0, f64::from(1u32 << 21)) as u64
         });
-        Self { min, cell, counts }
+        Self { min, step, counts }
     }
 
     fn capacity(&self) -> u64 {
@@ -187,9 +199,9 @@ impl Lattice {
     fn place(&self, i: u64, radius: f64, rng: &mut SplitMix64) -> [f64; 3] {
         let [nx, ny, _] = self.counts;
         let idx = [i % nx, (i / nx) % ny, i / (nx * ny)];
-        let slack = self.cell / 2.0 - radius;
         std::array::from_fn(|k| {
-            let centre = self.min[k] + (idx[k] as f64 + 0.5) * self.cell;
+            let slack = self.step[k] / 2.0 - radius;
+            let centre = self.min[k] + (idx[k] as f64 + 0.5) * self.step[k];
             centre + slack * (2.0 * rng.unit() - 1.0)
         })
     }
@@ -274,8 +286,8 @@ impl Checked {
         let lattice = Lattice::new(min, max, radius);
         // Far from the origin an f64 resolves positions only coarsely: neighbouring spheres
         // would round onto each other. Ask for positions resolved to a millionth of the radius.
-        for (&start, &cells) in min.iter().zip(&lattice.counts) {
-            let end = start + cells as f64 * lattice.cell;
+        for ((&start, &cells), &step) in min.iter().zip(&lattice.counts).zip(&lattice.step) {
+            let end = start + cells as f64 * step;
             let (field, far) = if start.abs() >= end.abs() {
                 ("min", start.abs())
             } else {

@@ -61,6 +61,11 @@ fn at_start(d: DVec3, w: DVec3, contact: f64, tol: Tolerance) -> Option<ToiOutco
     })
 }
 
+/// Below this product of a pair's relative speed and contact distance (in SI units) the exact
+/// method works in units of the pair (see [`ExactToi`]): its square, 1e-280, is still far from
+/// where an f64 loses precision to underflow (1e-308).
+const TINY_PRODUCT: f64 = 1e-140;
+
 /// The exact swept-sphere test: the first root of `|d + w t|^2 = R^2`, in closed form.
 ///
 /// Written for precision: the discriminant is computed as `|w|^2 R^2 - |d x w|^2` (no
@@ -68,9 +73,11 @@ fn at_start(d: DVec3, w: DVec3, contact: f64, tol: Tolerance) -> Option<ToiOutco
 /// `c / (-b + sqrt(disc))` with `c = (|d| - R)(|d| + R)` (no cancellation for grazing or nearly
 /// touching pairs). Where the products of speed and distance overflow an f64 (past about
 /// 1e154, as a sphere of 1e100 m met at 1e94 m/s), the same root is taken with the relative
-/// velocity scaled to at most 1 a component. Nothing can tunnel, whatever the speeds or the
-/// step length, as long as the squares of distances stay within an f64: distances and radii
-/// below about 1e150 m (radii are held to [`MAX_RADIUS`](crate::MAX_RADIUS)).
+/// velocity scaled to at most 1 a component; where they would underflow (below about 1e-140,
+/// as spheres of 1e-80 m closing at 1e-83 m/s), in units of the pair's size and speed. Nothing
+/// can tunnel, whatever the speeds or the step length, as long as the squares of distances
+/// stay within an f64: distances and radii below about 1e150 m (radii are held to
+/// [`MAX_RADIUS`](crate::MAX_RADIUS)).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExactToi;
 
@@ -89,6 +96,17 @@ impl TimeOfImpact for ExactToi {
         let none = ToiOutcome {
             time: None,
             iterations: 0,
+        };
+        // Where products of speed and distance would underflow (spheres 1e-80 m across closing
+        // at 1e-83 m/s: the discriminant's 4e-326 is 0 in an f64, and the root came out past
+        // the pair's meeting), the same root in units of the pair's size and of its relative
+        // velocity's largest component, the time scaled back.
+        let speed = w.abs().max_element();
+        let (d, w, contact, unit_time) = if speed * contact < TINY_PRODUCT {
+            let length = d.abs().max_element().max(contact);
+            (d / length, w / speed, contact / length, length / speed)
+        } else {
+            (d, w, contact, 1.0)
         };
         let half_b = d.dot(w);
         if half_b >= 0.0 {
@@ -111,6 +129,7 @@ impl TimeOfImpact for ExactToi {
         let c = (distance - contact) * (distance + contact);
         let t = c / (-half_b + disc.sqrt());
         let t = if scale == 1.0 { t } else { t / scale };
+        let t = if unit_time == 1.0 { t } else { t * unit_time };
         ToiOutcome {
             time: (t <= t_max).then_some(t),
             iterations: 0,

@@ -74,9 +74,10 @@ pub enum Generator {
     },
     /// `count` spheres of one radius moving at `speed` in random directions inside the box
     /// `min..max`, closed (by default) by six fixed walls: spheres of radius `wall_radius`
-    /// whose surfaces touch the box's faces, flat to within `size² / (8 · wall_radius)`. Walls
-    /// too small to close the box's corners (about 4.45 times its largest half-size, less for
-    /// larger spheres) are refused.
+    /// whose surfaces touch the box's faces' middles, flat to within `(a² + b²) / (8 ·
+    /// wall_radius)` over a face of sides `a` and `b` (at its corners). Walls too small to
+    /// close the box's corners (about 4.45 times its largest half-size, less for larger
+    /// spheres) are refused.
     Gas {
         /// How many spheres.
         count: u32,
@@ -478,6 +479,18 @@ impl Generator {
                     .collect();
                 if walls {
                     check.positive("wall_radius", wall_radius)?;
+                    // A wall is checked as a world checks each sphere (a radius past
+                    // `MAX_RADIUS` was taken here, and then refused naming the wall's sphere,
+                    // not this generator's field).
+                    if let Err(e) = crate::SphereDesc::new(wall_radius)
+                        .fixed()
+                        .validate(String::new)
+                    {
+                        return Err(check.err(
+                            "wall_radius",
+                            format!("{}, got {}", e.reason, crate::Readable(e.value)),
+                        ));
+                    }
                     // Walls too small leave a gap at each corner of the box: three walls of
                     // radius R whose surfaces touch a cube's faces, `h` from its centre, leave
                     // a sphere of radius r a way out along the corner's diagonal unless

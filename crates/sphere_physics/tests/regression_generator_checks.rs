@@ -133,3 +133,15 @@ fn regression_a_scene_counts_its_generated_spheres() {
     assert_eq!(scene.len(), 27);
     assert_eq!(scene.all_spheres().unwrap().len(), 27);
 }
+
+/// Regression: a gas's `wall_radius` past the largest radius a sphere may have (1e150 m)
+/// passed the generator's checks, and the scene was then refused naming a sphere that is not
+/// in the file (`sphere 'wall xmin' (#1): radius must be at most 1e150 ...`). Found by review
+/// in the sixty-fourth session.
+#[test]
+fn regression_a_gas_wall_radius_past_the_largest_radius_names_the_generator() {
+    let ron = "(name: \"huge walls\", generate: [
+        Gas(count: 1, seed: 1, min: (-5e142, -5e142, -5e142), max: (5e142, 5e142, 5e142),
+            radius: 1e142, speed: 0.0, density: 1e-250, wall_radius: 1e151)])";
+    assert_eq!(generator_error(ron), (0, "Gas", "wall_radius"));
+}

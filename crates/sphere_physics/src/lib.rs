@@ -71,7 +71,7 @@ pub use glam;
 pub use integrator::{Integrator, IntegratorKind, Kicks, Leapfrog, SemiImplicitEuler};
 pub use readable::Readable;
 pub use response::{CombineRule, GroupContact, Resolution, resolve, resolve_simultaneous};
-pub use scene::{MAX_SCENE_BYTES, SceneDesc, SceneError, SphereSpec};
+pub use scene::{MAX_LISTED, MAX_SCENE_BYTES, SceneDesc, SceneError, SphereSpec};
 pub use sleep::Sleep;
 pub use stats::{Collision, StepProfile, StepStats};
 pub use toi::{Bisection, ExactToi, TimeOfImpact, ToiMethod, ToiOutcome};

@@ -64,8 +64,8 @@ pub struct SceneDesc {
     /// `sleep: (speed: 0.1, time: 2.0)`; see [`Settings::sleep`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sleep: Option<Sleep>,
-    /// The spheres; their order is their body ids' order.
-    #[serde(default)]
+    /// The spheres; their order is their body ids' order. At most [`MAX_LISTED`] in a file.
+    #[serde(default, deserialize_with = "listed_spheres")]
     pub spheres: Vec<SphereSpec>,
     /// Generators of many spheres, added after `spheres` in this order (default none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -78,9 +78,47 @@ pub struct SceneDesc {
     pub view: Option<[[f64; 3]; 2]>,
 }
 
-/// The largest scene file [`SceneDesc::load`] reads, 4 GiB: some 40 million spheres listed
-/// one by one (a generator makes up to ten million from a line).
+/// The largest scene file [`SceneDesc::load`] reads, 4 GiB (a generator makes up to ten
+/// million spheres from a line; a file may list up to [`MAX_LISTED`] one by one).
 pub const MAX_SCENE_BYTES: u64 = 1 << 32;
+
+/// The most spheres a scene file may list one by one, as many as its generators may make
+/// ([`MAX_GENERATED`](crate::generate::MAX_GENERATED)): ten million take some 7 GB to step.
+/// Until the sixty-fourth session only the file's size bounded them: a file of 4 GiB may list
+/// 150 million spheres of 28 bytes each, some 27 GB once read.
+pub const MAX_LISTED: u32 = crate::generate::MAX_GENERATED;
+
+/// Reads a scene's list of spheres, refusing it (where it passes the limit, so a file says
+/// where) past [`MAX_LISTED`].
+fn listed_spheres<'de, D>(deserializer: D) -> Result<Vec<SphereSpec>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    struct Listed;
+    impl<'de> serde::de::Visitor<'de> for Listed {
+        type Value = Vec<SphereSpec>;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str("a list of spheres")
+        }
+        fn visit_seq<A: serde::de::SeqAccess<'de>>(
+            self,
+            mut seq: A,
+        ) -> Result<Self::Value, A::Error> {
+            let mut spheres = Vec::new();
+            while let Some(sphere) = seq.next_element::<SphereSpec>()? {
+                if spheres.len() >= MAX_LISTED as usize {
+                    return Err(serde::de::Error::custom(format!(
+                        "more than {MAX_LISTED} spheres listed (a generator makes many from \
+                         one line)"
+                    )));
+                }
+                spheres.push(sphere);
+            }
+            Ok(spheres)
+        }
+    }
+    deserializer.deserialize_seq(Listed)
+}
 
 /// One sphere in a scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -266,10 +266,14 @@ fn tint_sleepers(
     }
 }
 
+/// The spheres whose strings are drawn: tethered and not fixed (the physics ignores a fixed
+/// sphere's string).
+type StrungSpheres = (With<Tethered>, Without<FixedSphere>, Without<StringVisual>);
+
 fn dress_strings(
     mut commands: Commands,
     assets: Res<LabAssets>,
-    tethered: Query<(Entity, &Children), With<Tethered>>,
+    tethered: Query<(Entity, &Children), StrungSpheres>,
     strings: Query<(), With<StringVisual>>,
 ) {
     for (entity, children) in &tethered {
@@ -287,7 +291,7 @@ fn dress_strings(
 
 /// Strings run from the sphere's centre to its anchor (the part inside the sphere is hidden).
 fn place_strings(
-    spheres: Query<(&Transform, &Tethered, &SphereBody, &Children), Without<StringVisual>>,
+    spheres: Query<(&Transform, &Tethered, &SphereBody, &Children), StrungSpheres>,
     mut strings: Query<&mut Transform, With<StringVisual>>,
 ) {
     for (transform, tether, body, children) in &spheres {
@@ -419,7 +423,8 @@ fn bounds_above_floor(spheres: impl Iterator<Item = StageSphere> + Clone) -> Opt
             low = low.min(centre - r);
             high = high.max(centre + r);
         }
-        if let Some(anchor) = anchor {
+        // A fixed sphere's string is ignored by the physics, and not drawn.
+        if let Some(anchor) = anchor.filter(|_| !fixed) {
             low = low.min(anchor);
             high = high.max(anchor);
         }
@@ -502,10 +507,10 @@ fn build_stage(
     let mut smallest = f32::INFINITY;
     // How far a tethered sphere swings out sideways beyond its anchor (as far as it starts).
     let mut reach = 0.0f32;
-    for (transform, body, _, tether) in &spheres {
+    for (transform, body, fixed, tether) in &spheres {
         let r = body.radius as f32;
         smallest = smallest.min(r);
-        if let Some(t) = tether {
+        if let Some(t) = tether.filter(|_| !fixed) {
             anchors.push(t.anchor.as_vec3());
             reach = reach.max((transform.translation.x - t.anchor.x as f32).abs() + r);
         }

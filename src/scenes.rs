@@ -9,7 +9,7 @@ use std::time::Duration;
 use bevy::ecs::system::ScheduleSystem;
 use bevy::prelude::*;
 use bevy_sphere_physics::prelude::*;
-use bevy_sphere_physics::sphere_physics::{SceneDesc, SceneError, Settings, SphereSpec};
+use bevy_sphere_physics::sphere_physics::{Readable, SceneDesc, SceneError, Settings, SphereSpec};
 
 /// The scene being shown: a Bevy state. `None` before the first scene is chosen.
 ///
@@ -94,6 +94,32 @@ pub struct LabScene {
 }
 
 impl LabScene {
+    /// Why the lab cannot run this scene, if it cannot: a step outside [1e-6, 1] s, a
+    /// restitution outside [0, 1], a view that is not a box, or settings the core refuses.
+    fn problem(&self) -> Option<String> {
+        if !(self.dt.is_finite() && (1e-6..=1.0).contains(&self.dt)) {
+            Some(format!(
+                "dt {} is not a step in seconds in [1e-6, 1]",
+                Readable(self.dt)
+            ))
+        } else if !(0.0..=1.0).contains(&self.restitution) {
+            Some(format!(
+                "restitution {} is outside [0, 1]",
+                Readable(self.restitution)
+            ))
+        } else if let Some((low, high)) = self
+            .view
+            .filter(|(low, high)| !(low.is_finite() && high.is_finite() && low.cmple(*high).all()))
+        {
+            Some(format!(
+                "view from {low} to {high} is not a box with finite corners, low to high"
+            ))
+        } else {
+            // Settings the core would refuse at every step (the scene would stand still).
+            self.settings.validate().err().map(|e| e.to_string())
+        }
+    }
+
     /// A scene with Earth's gravity, elastic spheres and a 1/60 s step.
     pub fn new(
         id: impl Into<String>,
@@ -256,26 +282,8 @@ impl LabAppExt for App {
         let mut scenes = self.world_mut().get_resource_or_init::<LabScenes>();
         let problem = if scenes.get(&scene.id).is_some() {
             Some("a scene with this id is already registered".to_owned())
-        } else if !(scene.dt.is_finite() && (1e-6..=1.0).contains(&scene.dt)) {
-            Some(format!(
-                "dt {} is not a step in seconds in [1e-6, 1]",
-                scene.dt
-            ))
-        } else if !(0.0..=1.0).contains(&scene.restitution) {
-            Some(format!(
-                "restitution {} is outside [0, 1]",
-                scene.restitution
-            ))
-        } else if let Some((low, high)) = scene
-            .view
-            .filter(|(low, high)| !(low.is_finite() && high.is_finite() && low.cmple(*high).all()))
-        {
-            Some(format!(
-                "view from {low} to {high} is not a box with finite corners, low to high"
-            ))
         } else {
-            // Settings the core would refuse at every step (the scene would stand still).
-            scene.settings.validate().err().map(|e| e.to_string())
+            scene.problem()
         };
         if let Some(problem) = problem {
             let error = format!("scene {:?} left out: {problem}", scene.id);
@@ -332,6 +340,17 @@ impl LabAppExt for App {
         });
         match loaded {
             Ok((scene, spheres)) => {
+                // A step the lab does not run (valid for `sphere-sim`), named with the file's
+                // path (until the sixty-fourth session, by the scene's id only).
+                if let Some(problem) = scene.problem() {
+                    self.world_mut()
+                        .get_resource_or_init::<LabScenes>()
+                        .leave_out(
+                            id,
+                            format!("scene file left out: {}: {problem}", path.display()),
+                        );
+                    return self;
+                }
                 let spheres = Arc::new(spheres);
                 self.add_lab_scene(scene, move |mut commands: Commands| {
                     spawn_spheres(&mut commands, &spheres);
@@ -376,7 +395,10 @@ pub fn spawn_spheres(commands: &mut Commands, spheres: &[SphereSpec]) {
         if s.never_sleeps {
             entity.insert(NeverSleeps);
         }
-        if let Some(t) = &s.tether {
+        // A fixed sphere's string is ignored by the core (nothing moves it), so it is neither
+        // added nor drawn (until the sixty-fourth session it was drawn, and its anchor framed:
+        // one past `f32`'s range put the camera at infinity).
+        if let Some(t) = s.tether.as_ref().filter(|_| !s.fixed) {
             entity.insert(Tethered {
                 anchor: t.anchor,
                 length: t.length,

@@ -1301,3 +1301,73 @@ fn regression_a_scene_of_microsecond_steps_runs_a_bounded_number_of_them_a_frame
         "{taken} fixed steps in one frame"
     );
 }
+
+/// Regression (found by review, sixty-fourth session): a scene file whose `dt` the core and
+/// `sphere-sim` take but the lab does not (outside [1e-6, 1] s) was listed as left out by its
+/// scene's id alone, without the file's path that `LabScenes::errors` promises, and with the
+/// step printed in full (`dt: 1e-300` took some 300 digits).
+#[test]
+fn regression_a_scene_file_with_a_step_the_lab_does_not_take_is_listed_with_its_path() {
+    let dir = temp_dir("steps");
+    std::fs::create_dir_all(&dir).unwrap();
+    let tiny = dir.join("tiny_step.ron");
+    std::fs::write(
+        &tiny,
+        "(name: \"Tiny step\", dt: 1e-300,
+          spheres: [(position: (0.0, 0.0, 0.0), radius: 1.0)])",
+    )
+    .unwrap();
+    let mut app = lab(LabPlugin::default());
+    app.add_lab_scene_file(&tiny);
+    app.update();
+    let scenes = app.world().resource::<LabScenes>();
+    let failure = scenes.failure("tiny_step").expect("listed as left out");
+    assert!(
+        failure.contains(&tiny.display().to_string()) && failure.contains("dt"),
+        "{failure}"
+    );
+    assert!(
+        failure.len() < 200 + tiny.display().to_string().len(),
+        "{failure}"
+    );
+}
+
+/// Regression (found by review, sixty-fourth session): the lab gave a fixed sphere of a scene
+/// file its string, which the core ignores (nothing moves a fixed sphere): drawn, and its
+/// anchor framed, one past `f32`'s range putting the camera at infinity.
+#[test]
+fn regression_a_fixed_spheres_string_is_neither_added_nor_framed() {
+    let dir = temp_dir("fixed_strings");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("fixed_string.ron");
+    std::fs::write(
+        &file,
+        "(name: \"Fixed string\", gravity: (0.0, -9.81, 0.0),
+          spheres: [(position: (0.0, 0.0, 0.0), radius: 0.5, fixed: true,
+                     tether: (anchor: (1e39, 0.0, 0.0), length: 1.0)),
+                    (position: (0.0, 2.0, 0.0), radius: 0.5)])",
+    )
+    .unwrap();
+    let mut app = lab(LabPlugin::default());
+    app.add_lab_scene_file(&file);
+    app.update();
+    app.world_mut()
+        .write_message(LabAction::Load("fixed_string".to_owned()));
+    app.update();
+    app.update();
+    assert_eq!(spheres(&mut app).len(), 2);
+    let mut tethered = app.world_mut().query::<&Tethered>();
+    assert_eq!(tethered.iter(app.world()).count(), 0);
+    // The stage frames what moves: the falling sphere, not the anchor.
+    let stage = sphere_lab::render::scene_stage(
+        [
+            (Vec3::ZERO, 0.5, true, Some(Vec3::new(1e38, 0.0, 0.0))),
+            (Vec3::new(0.0, 2.0, 0.0), 0.5, false, None),
+        ]
+        .into_iter(),
+        true,
+    )
+    .expect("a stage");
+    assert!(stage.low.is_finite() && stage.high.is_finite(), "{stage:?}");
+    assert!(stage.high.x < 10.0, "{stage:?}");
+}

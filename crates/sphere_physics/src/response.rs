@@ -211,14 +211,6 @@ pub fn resolve_simultaneous(
         })
         .fold(0.0f64, f64::max);
     let n = contacts.len();
-    // What rounding leaves in a contact's speed: a few hundred units in the last place of the
-    // group's fastest velocity (a group moving at 10 m/s, struck at 1 m/s, could not meet a
-    // bound of 1e-14 of the strike alone, and its sweeps ran to their cap).
-    let rounding = 1e-12
-        * velocities
-            .iter()
-            .map(|v| v.abs().max_element())
-            .fold(0.0f64, f64::max);
     // Contacts of several restitutions: their restitution impulses may gain energy (below),
     // measured in the frame of the group's fixed bodies (a moving fixed sphere, kinematic,
     // gives energy on purpose), unless they move apart (then there is no frame to judge in).
@@ -228,26 +220,24 @@ pub fn resolve_simultaneous(
         .map(|c| clamped(c.restitution));
     let first = restitutions.next();
     let mut mixed = restitutions.any(|e| Some(e) != first);
-    // The frame of the group's fixed bodies, and whether they all move in it (energies are
-    // judged only then; also after sweeps that stop short of the answer, below).
-    let mut frame = None;
-    let mut one_frame = true;
-    for c in contacts {
-        for k in [c.a, c.b].into_iter().filter(|&k| inverse_masses[k] == 0.0) {
-            match frame {
-                None => frame = Some(velocities[k]),
-                Some(v) if v != velocities[k] => one_frame = false,
-                Some(_) => {}
-            }
-        }
+    // The velocity of the group's fixed bodies, and whether they all move at it (energies are
+    // judged only then), found when needed: for mixed restitutions, and after sweeps that
+    // stop short of the answer (below).
+    let mut fixed = None;
+    if mixed {
+        let found = fixed_frame(inverse_masses, velocities, contacts);
+        mixed = found.1;
+        fixed = Some(found);
     }
-    mixed &= one_frame;
     // With no fixed body in the group, mixed restitutions' energies are judged in the world's
     // frame (its allowance for rounding, 1e-12 of the whole energy, may hide a gain that
     // small); those of sweeps that stop short, below, in the centre of mass's frame, which
     // the impulses keep.
-    let fixed_frame = frame;
-    let mut frame = fixed_frame.unwrap_or(DVec3::ZERO);
+    let mut frame = fixed
+        .and_then(|(velocity, _)| velocity)
+        .unwrap_or(DVec3::ZERO);
+    // Whether sweeps that stop short have their energies judged (see below).
+    let mut short_judged = false;
     let mut units = if mixed {
         energy_units(inverse_masses, velocities, frame)
     } else {
@@ -286,6 +276,14 @@ pub fn resolve_simultaneous(
         let (own, rest) = impulses.split_at_mut(n);
         let (per_contact, per_body) = rest.split_at_mut(4 * n);
         let (saved, work) = per_body.split_at_mut(3 * velocities.len());
+        // What rounding leaves in a contact's speed: a few hundred units in the last place of
+        // the group's fastest velocity (a group moving at 10 m/s, struck at 1 m/s, could not
+        // meet a bound of 1e-14 of the strike alone, and its sweeps ran to their cap).
+        let rounding = 1e-12
+            * velocities
+                .iter()
+                .map(|v| v.abs().max_element())
+                .fold(0.0f64, f64::max);
         for (v, keep) in velocities.iter().zip(saved.chunks_exact_mut(3)) {
             keep.copy_from_slice(&v.to_array());
         }
@@ -303,10 +301,12 @@ pub fn resolve_simultaneous(
             for (v, keep) in velocities.iter_mut().zip(saved.chunks_exact(3)) {
                 *v = DVec3::from_slice(keep);
             }
+            let (fixed_velocity, one_frame) =
+                *fixed.get_or_insert_with(|| fixed_frame(inverse_masses, velocities, contacts));
+            short_judged = one_frame;
             if one_frame && !mixed {
-                if fixed_frame.is_none() {
-                    frame = centre_of_mass_velocity(inverse_masses, velocities);
-                }
+                frame = fixed_velocity
+                    .unwrap_or_else(|| centre_of_mass_velocity(inverse_masses, velocities));
                 units = energy_units(inverse_masses, velocities, frame);
                 energy_before = kinetic_energy(inverse_masses, velocities, frame, units);
             }
@@ -332,7 +332,7 @@ pub fn resolve_simultaneous(
     // group's kinetic energy is no more than before (or than after the compression, when
     // biases pushed on purpose). The energy is quadratic in the scale: its values at 0, 1/2
     // and 1 give it.
-    let judged = mixed || (!converged && one_frame);
+    let judged = mixed || (!converged && short_judged);
     let energy = |velocities: &[DVec3]| kinetic_energy(inverse_masses, velocities, frame, units);
     let (compressed, allowed) = if judged {
         let compressed = energy(velocities);
@@ -400,6 +400,26 @@ pub fn resolve_simultaneous(
             break;
         }
     }
+}
+
+/// The velocity of a group's fixed bodies (`None` if it has none), and whether they all move
+/// at it.
+fn fixed_frame(
+    inverse_masses: &[f64],
+    velocities: &[DVec3],
+    contacts: &[GroupContact],
+) -> (Option<DVec3>, bool) {
+    let mut frame = None;
+    for c in contacts {
+        for k in [c.a, c.b].into_iter().filter(|&k| inverse_masses[k] == 0.0) {
+            match frame {
+                None => frame = Some(velocities[k]),
+                Some(v) if v != velocities[k] => return (frame, false),
+                Some(_) => {}
+            }
+        }
+    }
+    (frame, true)
 }
 
 /// The velocity of the centre of mass of a group's dynamic bodies (those of inverse mass

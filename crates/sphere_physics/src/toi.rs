@@ -102,7 +102,7 @@ impl TimeOfImpact for ExactToi {
         // the pair's meeting), the same root in units of the pair's size and of its relative
         // velocity's largest component, the time scaled back.
         let speed = w.abs().max_element();
-        let (d, w, contact, unit_time) = if speed * contact < TINY_PRODUCT {
+        let (d, w, contact, unit_time) = if speed > 0.0 && speed * contact < TINY_PRODUCT {
             let length = d.abs().max_element().max(contact);
             (d / length, w / speed, contact / length, length / speed)
         } else {

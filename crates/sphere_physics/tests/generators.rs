@@ -1,5 +1,8 @@
 //! Scene generators: deterministic, inside their box, never overlapping, and checked.
 
+mod common;
+
+use common::no_overlap;
 use sphere_physics::generate::Generator;
 use sphere_physics::{SceneDesc, SceneError};
 
@@ -28,18 +31,6 @@ fn gas(count: u32, walls: bool) -> Generator {
         restitution: None,
         walls,
         wall_radius: 1.0e4,
-    }
-}
-
-fn no_overlap(spheres: &[sphere_physics::SphereSpec]) {
-    for (i, a) in spheres.iter().enumerate() {
-        for b in &spheres[i + 1..] {
-            let d: f64 = (0..3)
-                .map(|k| (a.position[k] - b.position[k]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            assert!(d >= a.radius + b.radius, "{a:?} overlaps {b:?}");
-        }
     }
 }
 

@@ -7,6 +7,8 @@
 //! placed away from the origin (the bench's tiles of showers) lost a cell or not as their
 //! corners rounded. Found by review (sixty-fourth session).
 
+mod common;
+
 use sphere_physics::SphereSpec;
 use sphere_physics::generate::Generator;
 
@@ -40,15 +42,7 @@ fn inside(spheres: &[SphereSpec], min: [f64; 3], max: [f64; 3]) {
 /// Every sphere inside `min..max`, and no two overlapping.
 fn inside_and_apart(spheres: &[SphereSpec], min: [f64; 3], max: [f64; 3]) {
     inside(spheres, min, max);
-    for (i, a) in spheres.iter().enumerate() {
-        for b in &spheres[i + 1..] {
-            let d: f64 = (0..3)
-                .map(|k| (a.position[k] - b.position[k]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            assert!(d >= a.radius + b.radius, "{a:?} overlaps {b:?}");
-        }
-    }
+    common::no_overlap(spheres);
 }
 
 #[test]

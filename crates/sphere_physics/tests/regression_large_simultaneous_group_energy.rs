@@ -5,20 +5,10 @@
 //! left with 8.6 times the energy they brought, 100 from a sphere around it with 2.2 times.
 //! Found by review (sixty-fourth session).
 
-use sphere_physics::{GroupContact, SphereDesc, World, glam::DVec3, resolve_simultaneous};
+mod common;
 
-/// `n` unit directions spread evenly over the sphere (a Fibonacci lattice).
-fn sphere_directions(n: usize) -> Vec<DVec3> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let r = (1.0 - y * y).sqrt();
-            let phi = golden * i as f64;
-            DVec3::new(r * phi.cos(), y, r * phi.sin())
-        })
-        .collect()
-}
+use common::sphere_directions;
+use sphere_physics::{GroupContact, SphereDesc, World, glam::DVec3, resolve_simultaneous};
 
 /// `n` unit directions evenly around a circle in the xy plane.
 fn ring_directions(n: usize) -> Vec<DVec3> {

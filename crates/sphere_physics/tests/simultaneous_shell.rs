@@ -5,30 +5,19 @@
 //! fixed sphere, 0.35 s on a heavy one; 0.08 s and 0.11 s since. Timing is the benchmarks'
 //! job: `cargo bench -p sphere_bench -- simultaneous`. Found by review.)
 
+mod common;
+
 use sphere_physics::{Settings, SphereDesc, World, glam::DVec3};
 
 /// Balls in the shell: at impact they are 0.18 apart (centre to centre), radius 0.05.
 const BALLS: usize = 40_000;
-
-/// `n` unit directions spread evenly over the sphere (a Fibonacci lattice).
-fn directions(n: usize) -> Vec<DVec3> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let r = (1.0 - y * y).sqrt();
-            let phi = golden * i as f64;
-            DVec3::new(r * phi.cos(), y, r * phi.sin())
-        })
-        .collect()
-}
 
 /// A world with `centre` at the origin (radius 10) and a shell of small balls around it, all
 /// 0.03 from its surface and moving straight at it at 3 m/s: every one lands at t = 0.01 s.
 fn shell(centre: SphereDesc) -> (World, Vec<DVec3>) {
     let mut world = World::new(Settings::with_gravity(DVec3::ZERO));
     world.add_sphere(centre).unwrap();
-    let directions = directions(BALLS);
+    let directions = common::sphere_directions(BALLS);
     for &d in &directions {
         let ball = SphereDesc::new(0.05).at(d * 10.08).moving(-d * 3.0);
         world.add_sphere(ball).unwrap();

@@ -4,7 +4,8 @@
 //! spheres among others hanging on strings, a crowd placed overlapping with no gravity, a
 //! crowd crushed together with a small collision budget, and
 //! the deepest overlap (also beyond the contact band) and centre of mass of a world, a world
-//! with sleeping on above a floor and the steps a ball takes to fall asleep there; and the
+//! with sleeping on above a floor and the steps a ball takes to fall asleep there; directions
+//! spread evenly over a sphere; a check that generated spheres do not overlap; and the
 //! property tests' configuration from a fixed seed.
 // Each test file uses part of this.
 #![allow(dead_code)]
@@ -435,4 +436,30 @@ pub fn steps_to_sleep(world: &mut World, ball: BodyId, dt: f64) -> u32 {
         }
     }
     panic!("the ball never fell asleep: {:?}", world.body(ball))
+}
+
+/// `n` unit directions spread evenly over the sphere (a Fibonacci lattice).
+pub fn sphere_directions(n: usize) -> Vec<DVec3> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|i| {
+            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+            let r = (1.0 - y * y).sqrt();
+            let phi = golden * i as f64;
+            DVec3::new(r * phi.cos(), y, r * phi.sin())
+        })
+        .collect()
+}
+
+/// Panics if any two of `spheres` overlap.
+pub fn no_overlap(spheres: &[sphere_physics::SphereSpec]) {
+    for (i, a) in spheres.iter().enumerate() {
+        for b in &spheres[i + 1..] {
+            let d: f64 = (0..3)
+                .map(|k| (a.position[k] - b.position[k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            assert!(d >= a.radius + b.radius, "{a:?} overlaps {b:?}");
+        }
+    }
 }
